@@ -1,0 +1,81 @@
+#ifndef bsmpm_body_region_h
+#define bsmpm_body_region_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <string>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The region of the plane that the body occupies at the start of a run:
+   * where material points are generated. Shapes: an axis-aligned rectangle,
+   * a rotated rectangle, an annulus sector, a rectangle minus a disc.
+   */
+  class BodyRegion
+  {
+  public:
+    enum class Shape
+    {
+      rectangle,
+      rotated_rectangle,
+      annulus_sector,
+      rectangle_minus_disc
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Whether @p p lies in the closed region. */
+    bool
+    contains(const Point<2> &p) const;
+
+    /** Exact area of the region. */
+    double
+    area() const;
+
+    /** Smallest axis-aligned box holding the region. */
+    BoundingBox<2>
+    bounding_box() const;
+
+    Shape
+    shape() const
+    {
+      return region_shape;
+    }
+
+    /** Corners of a rotated rectangle (or rectangle), counter-clockwise,
+     * starting at the lower left corner before rotation. */
+    std::array<Point<2>, 4>
+    corners() const;
+
+    /** Data of an annulus sector (angles in radians). */
+    struct Sector
+    {
+      Point<2> center;
+      double   inner_radius, outer_radius, start_angle, end_angle;
+    };
+    const Sector &
+    sector() const
+    {
+      return annulus;
+    }
+
+  private:
+    Shape    region_shape = Shape::rectangle;
+    Point<2> lower_left, upper_right; // rectangle (and rectangle minus disc)
+    Point<2> center;                  // rotated rectangle
+    double   width = 1, height = 1, angle = 0;
+    Sector   annulus;
+    Point<2> disc_center;
+    double   disc_radius = 0;
+  };
+} // namespace bsmpm
+
+#endif

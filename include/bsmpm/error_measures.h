@@ -1,0 +1,31 @@
+#ifndef bsmpm_error_measures_h
+#define bsmpm_error_measures_h
+
+#include <bsmpm/exact_solution.h>
+#include <bsmpm/material_points.h>
+
+#include <map>
+#include <string>
+
+namespace bsmpm
+{
+  /**
+   * Errors of the material-point solution against an exact one, evaluated at
+   * the initial position of every point with volume (paper eqs 37-40):
+   *
+   * - R_u, R_v, R_sigma_xx, R_sigma_yy, R_sigma_xy: volume-weighted means of
+   *   the pointwise relative errors |h - a| / |a|; a component is left out
+   *   when its exact value vanishes at some point.
+   * - A_u, A_v, A_sigma_xx, A_sigma_yy, A_sigma_xy: volume-weighted means of
+   *   the absolute errors; max_A_u, max_A_v: their maxima.
+   * - L2_u, L2_sigma: relative L2 errors over the points,
+   *   sqrt(sum V |h - a|^2 / sum V |a|^2), with the Frobenius norm for the
+   *   stress.
+   */
+  std::map<std::string, double>
+  compute_errors(const MaterialPoints &points,
+                 const ExactSolution & exact,
+                 const MPI_Comm        communicator);
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,61 @@
+#ifndef bsmpm_linear_solver_h
+#define bsmpm_linear_solver_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <string>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Solves the linear system of a load step: a sparse direct solver (MUMPS
+   * through Amesos, KLU where MUMPS is missing), or CG preconditioned by
+   * Trilinos ML's algebraic multigrid with the two translations of plane
+   * elasticity as near-null space. "automatic" takes the direct solver up to
+   * a number of unknowns and CG + AMG beyond.
+   */
+  class LinearSolver
+  {
+  public:
+    enum class Method
+    {
+      direct,
+      cg_amg,
+      automatic
+    };
+
+    struct Report
+    {
+      std::string  method;
+      unsigned int iterations = 0;
+      /** ||K x - b|| / ||b|| after the solve. */
+      double relative_residual = 0;
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    Report
+    solve(const TrilinosWrappers::SparseMatrix &matrix,
+          TrilinosWrappers::MPI::Vector &       solution,
+          const TrilinosWrappers::MPI::Vector & rhs,
+          const DoFHandler<2> &                 dof_handler) const;
+
+  private:
+    Method       method              = Method::direct;
+    double       tolerance           = 1e-12;
+    unsigned int max_iterations      = 10000;
+    unsigned int automatic_threshold = 100000;
+  };
+} // namespace bsmpm
+
+#endif

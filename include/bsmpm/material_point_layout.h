@@ -1,0 +1,68 @@
+#ifndef bsmpm_material_point_layout_h
+#define bsmpm_material_point_layout_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <bsmpm/background_grid.h>
+#include <bsmpm/body_region.h>
+
+#include <functional>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Where the material points start and what volume each one carries.
+   *
+   * - per cell: n x n points at the centres of the n x n sub-squares of every
+   *   grid cell, each with volume (cell area)/n^2, kept where inside the body.
+   * - lattice: nx x ny points at the centres of the sub-rectangles of a
+   *   rectangle (by default the body's bounding box), each with its
+   *   sub-rectangle's area, kept where inside the body.
+   * - polar: n_r x n_theta points at the centres (mid radius, mid angle) of
+   *   the polar sub-cells of an annulus-sector body, each with its sub-cell's
+   *   exact area.
+   *
+   * Points come in a fixed global order, the same on every process, so their
+   * index is a partition-independent particle id.
+   */
+  class MaterialPointLayout
+  {
+  public:
+    enum class Kind
+    {
+      per_cell,
+      lattice,
+      polar
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Calls @p f(position, volume) for every material point, in order. */
+    void
+    for_each_point(
+      const BackgroundGrid &                                   grid,
+      const BodyRegion &                                       region,
+      const std::function<void(const Point<2> &, double)> &f) const;
+
+    Kind
+    kind() const
+    {
+      return layout;
+    }
+
+  private:
+    Kind         layout         = Kind::per_cell;
+    unsigned int points_per_cell = 2;
+    std::array<unsigned int, 2> lattice_points = {{1, 1}};
+    std::string                 lattice_lower_left, lattice_upper_right;
+    std::array<unsigned int, 2> polar_points = {{1, 1}};
+  };
+} // namespace bsmpm
+
+#endif

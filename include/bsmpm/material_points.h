@@ -1,0 +1,129 @@
+#ifndef bsmpm_material_points_h
+#define bsmpm_material_points_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <bsmpm/background_grid.h>
+#include <bsmpm/body_region.h>
+#include <bsmpm/material.h>
+#include <bsmpm/material_point_layout.h>
+#include <bsmpm/q1_cell_kernel.h>
+
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The material points (MPs): the quadrature points of the method, which
+   * carry the state of the body through the load steps. They live in a
+   * Particles::ParticleHandler, so that sorting into cells and MPI ownership
+   * come from deal.II; their state is stored as particle properties.
+   *
+   * Zero-volume points are boundary tracking points: they move with the body
+   * but never enter the stiffness or the internal force.
+   */
+  class MaterialPoints
+  {
+  public:
+    /** Offsets of the state in the properties of a particle. */
+    struct Property
+    {
+      static constexpr unsigned int volume           = 0;
+      static constexpr unsigned int stress           = 1; ///< xx, yy, xy
+      static constexpr unsigned int strain           = 4; ///< xx, yy, xy
+      static constexpr unsigned int displacement     = 7; ///< total, x, y
+      static constexpr unsigned int initial_position = 9; ///< x, y
+      static constexpr unsigned int n_properties     = 11;
+    };
+
+    /** Result of moving the points by one increment. */
+    struct MoveReport
+    {
+      /** Points (over all processes) that would leave the grid. */
+      types::particle_index n_left_grid = 0;
+      /** Where one of them would go. */
+      Point<2> example;
+    };
+
+    explicit MaterialPoints(const BackgroundGrid &grid);
+
+    /**
+     * Creates the material points of @p layout in @p region. Throws if a
+     * point lies outside the grid or if the region holds no point.
+     */
+    void
+    generate(const MaterialPointLayout &layout, const BodyRegion &region);
+
+    /**
+     * Adds zero-volume tracking points at @p positions (the same list on
+     * every process) and returns their particle ids, in order.
+     */
+    std::vector<types::particle_index>
+    add_tracking_points(const std::vector<Point<2>> &positions);
+
+    const Particles::ParticleHandler<2> &
+    particle_handler() const
+    {
+      return particles;
+    }
+    Particles::ParticleHandler<2> &
+    particle_handler()
+    {
+      return particles;
+    }
+
+    /** Number of points with volume, over all processes. */
+    types::particle_index
+    n_global_material_points() const
+    {
+      return n_material_points;
+    }
+
+    /** Sum of the volumes of all points. */
+    double
+    global_volume() const;
+
+    /**
+     * The volume and stress moments of every locally owned cell, indexed by
+     * active_cell_index(); zero for other cells.
+     */
+    void
+    compute_cell_moments(std::vector<CellMoments> &moments) const;
+
+    /**
+     * Applies the grid increment @p increment (with ghost values) to every
+     * point: strain, stress, total displacement and position (paper eqs 5-8).
+     * The points are not re-sorted into cells; see sort_into_cells().
+     */
+    MoveReport
+    move(const Q1CellKernel &                              kernel,
+         const LinearElasticMaterial &                     material,
+         const LinearAlgebra::distributed::Vector<double> &increment);
+
+    /** Finds the cell and owner of every point after move(). */
+    void
+    sort_into_cells();
+
+    /** Property names and interpretations for Particles::DataOut. */
+    static std::vector<std::string>
+    property_names();
+
+  private:
+    /** Inserts one point if its cell is locally owned. */
+    void
+    insert(const Point<2> &             position,
+           const double                 volume,
+           const types::particle_index  id);
+
+    const BackgroundGrid &        grid;
+    Particles::ParticleHandler<2> particles;
+    types::particle_index         n_material_points = 0;
+    types::particle_index         next_id           = 0;
+  };
+} // namespace bsmpm
+
+#endif

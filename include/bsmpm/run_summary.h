@@ -1,0 +1,57 @@
+#ifndef bsmpm_run_summary_h
+#define bsmpm_run_summary_h
+
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  /**
+   * What a run reports: sizes, a line per load step, errors against the exact
+   * solution, scene-specific quantities and the time per phase. Written as
+   * summary.json for scripts and printed as a table for people.
+   */
+  struct RunSummary
+  {
+    struct Step
+    {
+      unsigned int number      = 0;
+      double       load_factor = 0;
+      std::string  solver;
+      unsigned int iterations        = 0;
+      double       relative_residual = 0;
+      unsigned int n_active_cells    = 0;
+    };
+
+    std::string                   scene;
+    unsigned long long            n_cells           = 0;
+    unsigned long long            n_dofs            = 0;
+    unsigned long long            n_material_points = 0;
+    unsigned long long            n_tracking_points = 0;
+    unsigned int                  load_steps        = 0;
+    std::vector<Step>             steps;
+    std::map<std::string, double> errors;
+    std::map<std::string, double> quantities;
+    std::map<std::string, double> timing;
+
+    /** JSON with numbers as numbers (full precision), NaN and inf as null. */
+    void
+    write_json(std::ostream &out) const;
+
+    /** The header lines: scene and sizes. */
+    void
+    print_header(std::ostream &out) const;
+
+    /** One line of the load-step table (with the table head before step 1). */
+    void
+    print_step(std::ostream &out, const Step &step) const;
+
+    /** Errors and quantities, one per line, six significant digits. */
+    void
+    print_results(std::ostream &out) const;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,116 @@
+#ifndef bsmpm_scene_h
+#define bsmpm_scene_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/background_grid.h>
+#include <bsmpm/body_region.h>
+#include <bsmpm/exact_solution.h>
+#include <bsmpm/linear_solver.h>
+#include <bsmpm/material.h>
+#include <bsmpm/material_point_layout.h>
+#include <bsmpm/material_points.h>
+#include <bsmpm/output_writer.h>
+#include <bsmpm/q1_cell_kernel.h>
+#include <bsmpm/run_summary.h>
+#include <bsmpm/verification.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * One analysis: an implicit, quasi-static, small-strain MPM run in load
+   * steps (paper Sec. 2, method-notes Sec. 1). Per load step:
+   *
+   *   sort points into cells -> constrain the DoFs of empty cells ->
+   *   assemble K and r = f_ext(lambda) - f_int(sigma_n) from the material
+   *   points -> solve K du = r -> move the points (strain, stress,
+   *   displacement, position) -> errors and output.
+   *
+   * The grid is reset after every step: only the points move.
+   */
+  class Scene
+  {
+  public:
+    explicit Scene(const MPI_Comm communicator);
+
+    /** Declares every parameter of bsmpm (all sections). */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Runs all load steps and writes the summary. */
+    void
+    run();
+
+    const RunSummary &
+    summary() const
+    {
+      return run_summary;
+    }
+
+  private:
+    void
+    setup();
+    void
+    setup_system();
+    void
+    make_constraints();
+    void
+    assemble_system(const double load_factor);
+    LinearSolver::Report
+    solve();
+    void
+    move_points(const unsigned int step);
+    void
+    write_output(const unsigned int step, const double load_factor);
+    void
+    evaluate_errors();
+    void
+    finish();
+
+    MPI_Comm            communicator;
+    ConditionalOStream  pcout;
+    mutable TimerOutput timer;
+    Timer               total_timer;
+
+    std::string         scene_name;
+    unsigned int        n_load_steps = 1;
+    Tensor<1, 2>        gravity;
+    BackgroundGrid      grid;
+    LinearElasticMaterial material;
+    BodyRegion          region;
+    MaterialPointLayout layout;
+    MaterialPoints      points;
+    LinearSolver        linear_solver;
+    OutputWriter        output;
+    Verification        verification;
+    std::unique_ptr<ExactSolution> exact_solution;
+    std::unique_ptr<Q1CellKernel>  kernel;
+
+    AffineConstraints<double>                  constraints;
+    TrilinosWrappers::SparseMatrix             system_matrix;
+    TrilinosWrappers::MPI::Vector              system_rhs;
+    LinearAlgebra::distributed::Vector<double> increment;
+    std::vector<CellMoments>                   cell_moments;
+    unsigned int                               n_active_cells = 0;
+
+    RunSummary run_summary;
+  };
+} // namespace bsmpm
+
+#endif

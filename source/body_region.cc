@@ -1,0 +1,264 @@
+#include <deal.II/base/numbers.h>
+
+#include <bsmpm/body_region.h>
+#include <bsmpm/parameter_tools.h>
+
+#include <cmath>
+
+namespace bsmpm
+{
+  void
+  BodyRegion::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Body region");
+    prm.declare_entry("Shape",
+                      "rectangle",
+                      Patterns::Selection("rectangle|rotated rectangle|"
+                                          "annulus sector|rectangle minus disc"),
+                      "Shape of the body at the start of the run.");
+    prm.declare_entry("Lower left corner",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "rectangle, rectangle minus disc: lower left corner.");
+    prm.declare_entry("Upper right corner",
+                      "1, 1",
+                      ParameterTools::point_pattern(),
+                      "rectangle, rectangle minus disc: upper right corner.");
+    prm.declare_entry("Center",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "rotated rectangle: its centre; annulus sector: the "
+                      "centre of its circles.");
+    prm.declare_entry("Width",
+                      "1",
+                      Patterns::Double(0.),
+                      "rotated rectangle: side length along its own x axis.");
+    prm.declare_entry("Height",
+                      "1",
+                      Patterns::Double(0.),
+                      "rotated rectangle: side length along its own y axis.");
+    prm.declare_entry("Angle",
+                      "0",
+                      Patterns::Double(),
+                      "rotated rectangle: counter-clockwise rotation in "
+                      "degrees.");
+    prm.declare_entry("Inner radius",
+                      "1",
+                      Patterns::Double(0.),
+                      "annulus sector: inner radius.");
+    prm.declare_entry("Outer radius",
+                      "2",
+                      Patterns::Double(0.),
+                      "annulus sector: outer radius.");
+    prm.declare_entry("Start angle",
+                      "0",
+                      Patterns::Double(),
+                      "annulus sector: first angle in degrees.");
+    prm.declare_entry("End angle",
+                      "90",
+                      Patterns::Double(),
+                      "annulus sector: last angle in degrees.");
+    prm.declare_entry("Disc center",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "rectangle minus disc: centre of the removed disc.");
+    prm.declare_entry("Disc radius",
+                      "0.5",
+                      Patterns::Double(0.),
+                      "rectangle minus disc: radius of the removed disc.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  BodyRegion::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Body region");
+    const std::string shape = prm.get("Shape");
+    region_shape =
+      shape == "rectangle" ?
+        Shape::rectangle :
+        (shape == "rotated rectangle" ?
+           Shape::rotated_rectangle :
+           (shape == "annulus sector" ? Shape::annulus_sector :
+                                        Shape::rectangle_minus_disc));
+    lower_left  = ParameterTools::get_point(prm, "Lower left corner");
+    upper_right = ParameterTools::get_point(prm, "Upper right corner");
+    center      = ParameterTools::get_point(prm, "Center");
+    width       = prm.get_double("Width");
+    height      = prm.get_double("Height");
+    angle       = prm.get_double("Angle") * numbers::PI / 180.;
+    annulus.center       = center;
+    annulus.inner_radius = prm.get_double("Inner radius");
+    annulus.outer_radius = prm.get_double("Outer radius");
+    annulus.start_angle  = prm.get_double("Start angle") * numbers::PI / 180.;
+    annulus.end_angle    = prm.get_double("End angle") * numbers::PI / 180.;
+    disc_center          = ParameterTools::get_point(prm, "Disc center");
+    disc_radius          = prm.get_double("Disc radius");
+    prm.leave_subsection();
+
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+        case Shape::rectangle_minus_disc:
+          AssertThrow(upper_right[0] > lower_left[0] &&
+                        upper_right[1] > lower_left[1],
+                      ExcMessage("Body region: the upper right corner must lie "
+                                 "above and to the right of the lower left "
+                                 "corner."));
+          if (region_shape == Shape::rectangle_minus_disc)
+            for (unsigned int d = 0; d < 2; ++d)
+              AssertThrow(disc_center[d] == lower_left[d] ||
+                            disc_center[d] == upper_right[d] ||
+                            (disc_center[d] - disc_radius >= lower_left[d] &&
+                             disc_center[d] + disc_radius <= upper_right[d]),
+                          ExcMessage("Body region: the disc must lie inside "
+                                     "the rectangle or be centred on its "
+                                     "edges (as a quarter or half hole)."));
+          break;
+        case Shape::rotated_rectangle:
+          AssertThrow(width > 0 && height > 0,
+                      ExcMessage("Body region: width and height of a rotated "
+                                 "rectangle must be positive."));
+          break;
+        case Shape::annulus_sector:
+          AssertThrow(annulus.outer_radius > annulus.inner_radius &&
+                        annulus.end_angle > annulus.start_angle &&
+                        annulus.end_angle - annulus.start_angle <=
+                          2 * numbers::PI,
+                      ExcMessage("Body region: an annulus sector needs "
+                                 "inner radius < outer radius and start angle "
+                                 "< end angle <= start angle + 360."));
+          break;
+      }
+  }
+
+
+
+  bool
+  BodyRegion::contains(const Point<2> &p) const
+  {
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+          return p[0] >= lower_left[0] && p[0] <= upper_right[0] &&
+                 p[1] >= lower_left[1] && p[1] <= upper_right[1];
+        case Shape::rectangle_minus_disc:
+          return p[0] >= lower_left[0] && p[0] <= upper_right[0] &&
+                 p[1] >= lower_left[1] && p[1] <= upper_right[1] &&
+                 p.distance(disc_center) >= disc_radius;
+        case Shape::rotated_rectangle:
+          {
+            const Tensor<1, 2> d = p - center;
+            const double       c = std::cos(angle), s = std::sin(angle);
+            const double       x = c * d[0] + s * d[1];
+            const double       y = -s * d[0] + c * d[1];
+            return std::abs(x) <= width / 2 && std::abs(y) <= height / 2;
+          }
+        case Shape::annulus_sector:
+          {
+            const Tensor<1, 2> d = p - annulus.center;
+            const double       r = d.norm();
+            if (r < annulus.inner_radius || r > annulus.outer_radius)
+              return false;
+            // Angle measured from the start angle, in [0, 2 pi).
+            double theta = std::atan2(d[1], d[0]) - annulus.start_angle;
+            theta -= 2 * numbers::PI * std::floor(theta / (2 * numbers::PI));
+            return theta <= annulus.end_angle - annulus.start_angle;
+          }
+      }
+    return false;
+  }
+
+
+
+  double
+  BodyRegion::area() const
+  {
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+          return (upper_right[0] - lower_left[0]) *
+                 (upper_right[1] - lower_left[1]);
+        case Shape::rectangle_minus_disc:
+          {
+            // parse_parameters() admits discs inside the rectangle or centred
+            // on its edges or corners: a whole, half or quarter hole.
+            const double rect = (upper_right[0] - lower_left[0]) *
+                                (upper_right[1] - lower_left[1]);
+            double fraction = 1.;
+            for (unsigned int d = 0; d < 2; ++d)
+              if (disc_center[d] == lower_left[d] ||
+                  disc_center[d] == upper_right[d])
+                fraction /= 2;
+            return rect - fraction * numbers::PI * disc_radius * disc_radius;
+          }
+        case Shape::rotated_rectangle:
+          return width * height;
+        case Shape::annulus_sector:
+          return (annulus.outer_radius * annulus.outer_radius -
+                  annulus.inner_radius * annulus.inner_radius) /
+                 2 * (annulus.end_angle - annulus.start_angle);
+      }
+    return 0;
+  }
+
+
+
+  std::array<Point<2>, 4>
+  BodyRegion::corners() const
+  {
+    if (region_shape == Shape::rotated_rectangle)
+      {
+        const double c = std::cos(angle), s = std::sin(angle);
+        const auto   corner = [&](const double x, const double y) {
+          return center + Tensor<1, 2>({c * x - s * y, s * x + c * y});
+        };
+        return {{corner(-width / 2, -height / 2),
+                 corner(width / 2, -height / 2),
+                 corner(width / 2, height / 2),
+                 corner(-width / 2, height / 2)}};
+      }
+    return {{lower_left,
+             Point<2>(upper_right[0], lower_left[1]),
+             upper_right,
+             Point<2>(lower_left[0], upper_right[1])}};
+  }
+
+
+
+  BoundingBox<2>
+  BodyRegion::bounding_box() const
+  {
+    switch (region_shape)
+      {
+        case Shape::annulus_sector:
+          {
+            // Sample the arcs densely enough and add the extreme points of the
+            // circles that the sector contains.
+            std::vector<Point<2>> points;
+            const unsigned int    n = 720;
+            for (unsigned int k = 0; k <= n; ++k)
+              {
+                const double a = annulus.start_angle +
+                                 (annulus.end_angle - annulus.start_angle) * k / n;
+                for (const double r :
+                     {annulus.inner_radius, annulus.outer_radius})
+                  points.emplace_back(annulus.center[0] + r * std::cos(a),
+                                      annulus.center[1] + r * std::sin(a));
+              }
+            BoundingBox<2> box(points);
+            // Round the sampled extremes outwards by the chord sagitta.
+            box.extend(annulus.outer_radius * (1 - std::cos(numbers::PI / n)));
+            return box;
+          }
+        default:
+          {
+            const auto corner = corners();
+            return BoundingBox<2>(
+              std::vector<Point<2>>(corner.begin(), corner.end()));
+          }
+      }
+  }
+} // namespace bsmpm

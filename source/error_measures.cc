@@ -1,0 +1,84 @@
+#include <deal.II/base/mpi.h>
+
+#include <bsmpm/error_measures.h>
+
+#include <array>
+#include <limits>
+#include <vector>
+#include <cmath>
+
+namespace bsmpm
+{
+  std::map<std::string, double>
+  compute_errors(const MaterialPoints &points,
+                 const ExactSolution & exact,
+                 const MPI_Comm        communicator)
+  {
+    using P = MaterialPoints::Property;
+    const std::array<std::string, 5> names = {
+      {"u", "v", "sigma_xx", "sigma_yy", "sigma_xy"}};
+
+    // Sums over points, reduced over processes at the end.
+    std::vector<double> abs_sum(5), rel_sum(5), max_abs(5), max_exact(5);
+    std::vector<double> min_exact(5, std::numeric_limits<double>::max());
+    double volume = 0, u_err2 = 0, u_norm2 = 0, s_err2 = 0, s_norm2 = 0;
+
+    Vector<double> a(5);
+    for (const auto &particle : points.particle_handler())
+      {
+        const auto   props = particle.get_properties();
+        const double V     = props[P::volume];
+        if (V == 0.)
+          continue;
+        exact.vector_value(Point<2>(props[P::initial_position],
+                                    props[P::initial_position + 1]),
+                           a);
+        const std::array<double, 5> h = {{props[P::displacement],
+                                          props[P::displacement + 1],
+                                          props[P::stress],
+                                          props[P::stress + 1],
+                                          props[P::stress + 2]}};
+        volume += V;
+        for (unsigned int c = 0; c < 5; ++c)
+          {
+            const double e = std::abs(h[c] - a[c]);
+            abs_sum[c] += V * e;
+            if (a[c] != 0.)
+              rel_sum[c] += V * e / std::abs(a[c]);
+            max_abs[c]   = std::max(max_abs[c], e);
+            max_exact[c] = std::max(max_exact[c], std::abs(a[c]));
+            min_exact[c] = std::min(min_exact[c], std::abs(a[c]));
+          }
+        u_err2 += V * (std::pow(h[0] - a[0], 2) + std::pow(h[1] - a[1], 2));
+        u_norm2 += V * (a[0] * a[0] + a[1] * a[1]);
+        s_err2 += V * (std::pow(h[2] - a[2], 2) + std::pow(h[3] - a[3], 2) +
+                       2 * std::pow(h[4] - a[4], 2));
+        s_norm2 += V * (a[2] * a[2] + a[3] * a[3] + 2 * a[4] * a[4]);
+      }
+
+    Utilities::MPI::sum(abs_sum, communicator, abs_sum);
+    Utilities::MPI::sum(rel_sum, communicator, rel_sum);
+    Utilities::MPI::max(max_abs, communicator, max_abs);
+    Utilities::MPI::max(max_exact, communicator, max_exact);
+    Utilities::MPI::min(min_exact, communicator, min_exact);
+    volume  = Utilities::MPI::sum(volume, communicator);
+    u_err2  = Utilities::MPI::sum(u_err2, communicator);
+    u_norm2 = Utilities::MPI::sum(u_norm2, communicator);
+    s_err2  = Utilities::MPI::sum(s_err2, communicator);
+    s_norm2 = Utilities::MPI::sum(s_norm2, communicator);
+
+    std::map<std::string, double> errors;
+    for (unsigned int c = 0; c < 5; ++c)
+      {
+        errors["A_" + names[c]] = abs_sum[c] / volume;
+        // A relative error needs an exact value that vanishes nowhere.
+        if (min_exact[c] > 1e-14 * max_exact[c])
+          errors["R_" + names[c]] = rel_sum[c] / volume;
+      }
+    errors["max_A_u"]  = max_abs[0];
+    errors["max_A_v"]  = max_abs[1];
+    errors["L2_u"]     = u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2 / volume);
+    errors["L2_sigma"] = s_norm2 > 0 ? std::sqrt(s_err2 / s_norm2) : std::sqrt(s_err2 / volume);
+    return errors;
+  }
+} // namespace bsmpm

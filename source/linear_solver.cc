@@ -1,0 +1,137 @@
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <bsmpm/linear_solver.h>
+
+namespace bsmpm
+{
+  void
+  LinearSolver::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Method",
+                      "direct",
+                      Patterns::Selection("direct|cg amg|automatic"),
+                      "direct: sparse LU (MUMPS, else KLU); cg amg: conjugate "
+                      "gradients with algebraic multigrid; automatic: direct "
+                      "up to 'Automatic threshold' unknowns, cg amg above.");
+    prm.declare_entry("Tolerance",
+                      "1e-12",
+                      Patterns::Double(0.),
+                      "cg amg: stop when the residual is below this fraction "
+                      "of the right-hand side.");
+    prm.declare_entry("Maximum iterations",
+                      "10000",
+                      Patterns::Integer(1),
+                      "cg amg: iteration limit.");
+    prm.declare_entry("Automatic threshold",
+                      "100000",
+                      Patterns::Integer(0),
+                      "automatic: number of unknowns above which CG + AMG "
+                      "replaces the direct solver.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  LinearSolver::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    const std::string m = prm.get("Method");
+    method = m == "direct" ? Method::direct :
+                             (m == "cg amg" ? Method::cg_amg : Method::automatic);
+    tolerance           = prm.get_double("Tolerance");
+    max_iterations      = prm.get_integer("Maximum iterations");
+    automatic_threshold = prm.get_integer("Automatic threshold");
+    prm.leave_subsection();
+  }
+
+
+
+  LinearSolver::Report
+  LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                      TrilinosWrappers::MPI::Vector &       solution,
+                      const TrilinosWrappers::MPI::Vector & rhs,
+                      const DoFHandler<2> &                 dof_handler) const
+  {
+    Report       report;
+    const double rhs_norm = rhs.l2_norm();
+    if (rhs_norm == 0.)
+      {
+        solution        = 0;
+        report.method   = "none (zero right-hand side)";
+        return report;
+      }
+
+    const bool use_direct =
+      method == Method::direct ||
+      (method == Method::automatic && matrix.m() <= automatic_threshold);
+
+    if (use_direct)
+      {
+        SolverControl control(1, 0);
+        // MUMPS is the fastest direct solver in Debian's Trilinos; fall back
+        // to KLU where it is missing.
+        for (const std::string name : {"Amesos_Mumps", "Amesos_Klu"})
+          {
+            try
+              {
+                TrilinosWrappers::SolverDirect solver(
+                  control, TrilinosWrappers::SolverDirect::AdditionalData(false, name));
+                solver.solve(matrix, solution, rhs);
+                report.method = name == "Amesos_Mumps" ? "direct (MUMPS)" :
+                                                         "direct (KLU)";
+                break;
+              }
+            catch (const ExceptionBase &)
+              {
+                if (name == "Amesos_Klu")
+                  throw;
+              }
+          }
+      }
+    else
+      {
+        TrilinosWrappers::PreconditionAMG::AdditionalData amg;
+        amg.elliptic              = true;
+        amg.higher_order_elements = false;
+        amg.smoother_sweeps       = 2;
+        amg.aggregation_threshold = 0.02;
+        DoFTools::extract_constant_modes(dof_handler,
+                                         ComponentMask(2, true),
+                                         amg.constant_modes);
+        TrilinosWrappers::PreconditionAMG preconditioner;
+        preconditioner.initialize(matrix, amg);
+
+        SolverControl control(max_iterations, tolerance * rhs_norm);
+        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+        try
+          {
+            cg.solve(matrix, solution, rhs, preconditioner);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            AssertThrow(false,
+                        ExcMessage("Linear solver: CG + AMG did not converge in " +
+                                   std::to_string(e.last_step) +
+                                   " iterations (residual " +
+                                   std::to_string(e.last_residual / rhs_norm) +
+                                   " of the right-hand side). The system may "
+                                   "be ill-conditioned: try Method = direct."));
+          }
+        report.method     = "cg amg";
+        report.iterations = control.last_step();
+      }
+
+    TrilinosWrappers::MPI::Vector residual(rhs);
+    matrix.vmult(residual, solution);
+    residual -= rhs;
+    report.relative_residual = residual.l2_norm() / rhs_norm;
+    return report;
+  }
+} // namespace bsmpm

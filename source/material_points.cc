@@ -1,0 +1,226 @@
+#include <deal.II/base/mpi.h>
+
+#include <bsmpm/material_points.h>
+
+#include <sstream>
+
+namespace bsmpm
+{
+  namespace
+  {
+    std::string
+    format_point(const Point<2> &p)
+    {
+      std::ostringstream s;
+      s << '(' << p[0] << ", " << p[1] << ')';
+      return s.str();
+    }
+  } // namespace
+
+
+
+  MaterialPoints::MaterialPoints(const BackgroundGrid &grid)
+    : grid(grid)
+  {}
+
+
+
+  void
+  MaterialPoints::insert(const Point<2> &            position,
+                         const double                volume,
+                         const types::particle_index id)
+  {
+    AssertThrow(grid.contains(position),
+                ExcMessage("Material point " + std::to_string(id) + " at " +
+                           format_point(position) +
+                           " lies outside the background grid " +
+                           format_point(grid.lower_left()) + " - " +
+                           format_point(grid.upper_right()) + "."));
+    const auto ij   = grid.cell_index(position);
+    const auto cell = grid.locally_owned_cell(ij);
+    if (cell == grid.dof_handler().end())
+      return;
+
+    std::array<double, Property::n_properties> properties{};
+    properties[Property::volume]               = volume;
+    properties[Property::initial_position]     = position[0];
+    properties[Property::initial_position + 1] = position[1];
+    particles.insert_particle(position,
+                              grid.local_coordinates(position, ij),
+                              id,
+                              cell,
+                              ArrayView<const double>(properties.data(),
+                                                      properties.size()));
+  }
+
+
+
+  void
+  MaterialPoints::generate(const MaterialPointLayout &layout,
+                           const BodyRegion &         region)
+  {
+    particles.initialize(grid.triangulation(),
+                         grid.mapping(),
+                         Property::n_properties);
+    next_id = 0;
+    // Every process walks the whole layout, so that ids do not depend on the
+    // partition, and keeps the points of its own cells.
+    layout.for_each_point(grid, region, [&](const Point<2> &p, double volume) {
+      insert(p, volume, next_id++);
+    });
+    n_material_points = next_id;
+    AssertThrow(n_material_points > 0,
+                ExcMessage("Material points: the body region holds no "
+                           "material point of the chosen layout."));
+    particles.update_cached_numbers();
+  }
+
+
+
+  std::vector<types::particle_index>
+  MaterialPoints::add_tracking_points(const std::vector<Point<2>> &positions)
+  {
+    std::vector<types::particle_index> ids;
+    for (const auto &p : positions)
+      {
+        ids.push_back(next_id);
+        insert(p, 0., next_id++);
+      }
+    particles.update_cached_numbers();
+    return ids;
+  }
+
+
+
+  double
+  MaterialPoints::global_volume() const
+  {
+    double volume = 0;
+    for (const auto &particle : particles)
+      volume += particle.get_properties()[Property::volume];
+    return Utilities::MPI::sum(volume, grid.mpi_communicator());
+  }
+
+
+
+  void
+  MaterialPoints::compute_cell_moments(std::vector<CellMoments> &moments) const
+  {
+    moments.assign(grid.triangulation().n_active_cells(), CellMoments());
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          CellMoments &m = moments[cell->active_cell_index()];
+          for (const auto &particle : particles.particles_in_cell(cell))
+            {
+              const auto   props  = particle.get_properties();
+              const double volume = props[Property::volume];
+              if (volume == 0.)
+                continue;
+              m.add(particle.get_reference_location(),
+                    volume,
+                    Voigt({props[Property::stress],
+                           props[Property::stress + 1],
+                           props[Property::stress + 2]}));
+            }
+        }
+  }
+
+
+
+  MaterialPoints::MoveReport
+  MaterialPoints::move(const Q1CellKernel &                              kernel,
+                       const LinearElasticMaterial &                     material,
+                       const LinearAlgebra::distributed::Vector<double> &increment)
+  {
+    const Tensor<2, 3> &C = material.stiffness();
+    MoveReport          report;
+    bool                found_example = false;
+
+    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
+    Q1CellKernel::LocalVector            d;
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || particles.n_particles_in_cell(cell) == 0)
+          continue;
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+          d[i] = increment(dof_indices[i]);
+        const auto e = kernel.strain_coefficients(d);
+
+        for (auto &particle : particles.particles_in_cell(cell))
+          {
+            const Point<2> st = particle.get_reference_location();
+            const Voigt    de = e[0] + st[0] * e[1] + st[1] * e[2];
+            const Voigt    ds = C * de;
+            const auto     du = kernel.displacement(d, st);
+
+            auto props = particle.get_properties();
+            for (unsigned int r = 0; r < 3; ++r)
+              {
+                props[Property::stress + r] += ds[r];
+                // Stored strain is the tensor component: eps_xy = gamma/2.
+                props[Property::strain + r] += (r == 2 ? de[r] / 2 : de[r]);
+              }
+            props[Property::displacement] += du[0];
+            props[Property::displacement + 1] += du[1];
+
+            const Point<2> x = particle.get_location() + du;
+            if (!grid.contains(x))
+              {
+                ++report.n_left_grid;
+                if (!found_example)
+                  report.example = x;
+                found_example = true;
+              }
+            particle.set_location(x);
+          }
+      }
+
+    // Make the report the same on every process.
+    report.n_left_grid =
+      Utilities::MPI::sum(report.n_left_grid, grid.mpi_communicator());
+    const unsigned int rank = Utilities::MPI::this_mpi_process(grid.mpi_communicator());
+    const unsigned int reporter = Utilities::MPI::min(
+      found_example ? rank : numbers::invalid_unsigned_int,
+      grid.mpi_communicator());
+    if (reporter != numbers::invalid_unsigned_int)
+      report.example = Utilities::MPI::broadcast(grid.mpi_communicator(),
+                                                 report.example,
+                                                 reporter);
+    return report;
+  }
+
+
+
+  void
+  MaterialPoints::sort_into_cells()
+  {
+    const auto before = particles.n_global_particles();
+    particles.sort_particles_into_subdomains_and_cells();
+    AssertThrow(particles.n_global_particles() == before,
+                ExcMessage("Material points were lost while sorting them into "
+                           "cells: " +
+                           std::to_string(before -
+                                          particles.n_global_particles()) +
+                           " of them left the grid."));
+  }
+
+
+
+  std::vector<std::string>
+  MaterialPoints::property_names()
+  {
+    return {"volume",
+            "stress_xx",
+            "stress_yy",
+            "stress_xy",
+            "strain_xx",
+            "strain_yy",
+            "strain_xy",
+            "displacement",
+            "displacement",
+            "initial_position",
+            "initial_position"};
+  }
+} // namespace bsmpm

@@ -1,0 +1,396 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <deal.II/particles/data_out.h>
+
+#include <bsmpm/error_measures.h>
+#include <bsmpm/parameter_tools.h>
+#include <bsmpm/scene.h>
+
+#include <sstream>
+
+namespace bsmpm
+{
+  Scene::Scene(const MPI_Comm communicator)
+    : communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , grid(communicator)
+    , points(grid)
+    , output(communicator)
+  {}
+
+
+
+  void
+  Scene::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Scene name",
+                      "",
+                      Patterns::Anything(),
+                      "Name of the scene in the summary; empty means the "
+                      "name of the parameter file.");
+    prm.enter_subsection("Loading");
+    prm.declare_entry("Load steps",
+                      "1",
+                      Patterns::Integer(1),
+                      "Number of equal load increments; the load factor of "
+                      "step n is n / (load steps).");
+    prm.declare_entry("Gravity",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "Gravitational acceleration in m/s^2; with the "
+                      "material density it gives the body force, applied in "
+                      "load steps like every other load.");
+    prm.leave_subsection();
+
+    BackgroundGrid::declare_parameters(prm);
+    LinearElasticMaterial::declare_parameters(prm);
+    BodyRegion::declare_parameters(prm);
+    MaterialPointLayout::declare_parameters(prm);
+    LinearSolver::declare_parameters(prm);
+    ExactSolution::declare_parameters(prm);
+    OutputWriter::declare_parameters(prm);
+    Verification::declare_parameters(prm);
+  }
+
+
+
+  void
+  Scene::parse_parameters(ParameterHandler &prm)
+  {
+    scene_name = prm.get("Scene name");
+    prm.enter_subsection("Loading");
+    n_load_steps = prm.get_integer("Load steps");
+    gravity      = ParameterTools::get_point(prm, "Gravity");
+    prm.leave_subsection();
+
+    grid.parse_parameters(prm);
+    material.parse_parameters(prm);
+    region.parse_parameters(prm);
+    layout.parse_parameters(prm);
+    linear_solver.parse_parameters(prm);
+    output.parse_parameters(prm);
+    verification.parse_parameters(prm);
+    exact_solution = ExactSolution::create(prm, material, gravity);
+  }
+
+
+
+  void
+  Scene::setup()
+  {
+    TimerOutput::Scope t(timer, "setup");
+    output.prepare_directory();
+
+    grid.create();
+    points.generate(layout, region);
+    kernel = std::make_unique<Q1CellKernel>(grid.fe(),
+                                            grid.cell_size(),
+                                            material.stiffness());
+    setup_system();
+
+    run_summary.scene             = scene_name;
+    run_summary.n_cells           = grid.triangulation().n_global_active_cells();
+    run_summary.n_dofs            = grid.dof_handler().n_dofs();
+    run_summary.n_material_points = points.n_global_material_points();
+    run_summary.n_tracking_points =
+      points.particle_handler().n_global_particles() -
+      points.n_global_material_points();
+    run_summary.load_steps = n_load_steps;
+  }
+
+
+
+  void
+  Scene::setup_system()
+  {
+    // The couplings of the full grid: valid whichever cells hold points, so
+    // the sparsity pattern is built once for all load steps.
+    DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
+    DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               grid.locally_owned_dofs(),
+                                               communicator,
+                                               grid.locally_relevant_dofs());
+    system_matrix.reinit(grid.locally_owned_dofs(),
+                         grid.locally_owned_dofs(),
+                         dsp,
+                         communicator);
+    system_rhs.reinit(grid.locally_owned_dofs(), communicator);
+    increment.reinit(grid.locally_owned_dofs(),
+                     grid.locally_relevant_dofs(),
+                     communicator);
+  }
+
+
+
+  void
+  Scene::make_constraints()
+  {
+    TimerOutput::Scope t(timer, "constraints");
+    // A DoF none of whose cells holds material is fixed at zero, or K would
+    // be singular (method-notes Sec. 1, step 1).
+    LinearAlgebra::distributed::Vector<double> support(
+      grid.locally_owned_dofs(), grid.locally_relevant_dofs(), communicator);
+    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
+    n_active_cells = 0;
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned() &&
+          cell_moments[cell->active_cell_index()].v > 0)
+        {
+          ++n_active_cells;
+          cell->get_dof_indices(dof_indices);
+          for (const auto i : dof_indices)
+            support(i) += 1;
+        }
+    support.compress(VectorOperation::add);
+    support.update_ghost_values();
+    n_active_cells = Utilities::MPI::sum(n_active_cells, communicator);
+
+    constraints.clear();
+    constraints.reinit(grid.locally_relevant_dofs());
+    for (const auto i : grid.locally_relevant_dofs())
+      if (support(i) == 0.)
+        constraints.add_line(i);
+    grid.make_face_constraints(constraints);
+    constraints.close();
+  }
+
+
+
+  void
+  Scene::assemble_system(const double load_factor)
+  {
+    TimerOutput::Scope t(timer, "assembly");
+    system_matrix = 0;
+    system_rhs    = 0;
+
+    const Tensor<1, 2> body_force = load_factor * material.density() * gravity;
+    const bool         has_body_force = body_force.norm() > 0;
+
+    FullMatrix<double>                   cell_matrix(Q1CellKernel::dofs_per_cell,
+                                   Q1CellKernel::dofs_per_cell);
+    Vector<double>                       cell_rhs(Q1CellKernel::dofs_per_cell);
+    Vector<double>                       internal(Q1CellKernel::dofs_per_cell);
+    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
+
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const CellMoments &m = cell_moments[cell->active_cell_index()];
+        if (m.v == 0.)
+          continue;
+
+        cell_matrix = 0;
+        cell_rhs    = 0;
+        internal    = 0;
+        kernel->add_stiffness(m, cell_matrix);
+        kernel->add_internal_force(m, internal);
+        if (has_body_force)
+          kernel->add_body_force(m, body_force, cell_rhs);
+        cell_rhs -= internal;
+
+        cell->get_dof_indices(dof_indices);
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+      }
+    system_matrix.compress(VectorOperation::add);
+    system_rhs.compress(VectorOperation::add);
+  }
+
+
+
+  LinearSolver::Report
+  Scene::solve()
+  {
+    TimerOutput::Scope            t(timer, "solve");
+    TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
+                                           communicator);
+    const auto                    report =
+      linear_solver.solve(system_matrix, solution, system_rhs, grid.dof_handler());
+    constraints.distribute(solution);
+
+    for (const auto i : grid.locally_owned_dofs())
+      increment(i) = solution(i);
+    increment.update_ghost_values();
+    return report;
+  }
+
+
+
+  void
+  Scene::move_points(const unsigned int step)
+  {
+    TimerOutput::Scope t(timer, "update points");
+    const auto report = points.move(*kernel, material, increment);
+    if (report.n_left_grid > 0)
+      {
+        std::ostringstream where;
+        where << '(' << report.example[0] << ", " << report.example[1] << ')';
+        AssertThrow(false,
+                    ExcMessage(std::to_string(report.n_left_grid) +
+                               " material point(s) left the background grid "
+                               "in load step " +
+                               std::to_string(step) + ", one of them to " +
+                               where.str() +
+                               ". Enlarge the grid or reduce the load step. "
+                               "The output of the previous step is intact."));
+      }
+  }
+
+
+
+  void
+  Scene::write_output(const unsigned int step, const double load_factor)
+  {
+    TimerOutput::Scope t(timer, "output");
+
+    DataOut<2> grid_out;
+    grid_out.attach_dof_handler(grid.dof_handler());
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      vector_field(2, DataComponentInterpretation::component_is_part_of_vector);
+    grid_out.add_data_vector(increment,
+                             std::vector<std::string>(2, "displacement_increment"),
+                             DataOut<2>::type_dof_data,
+                             vector_field);
+    Vector<float> fill(grid.triangulation().n_active_cells());
+    Vector<float> subdomain(grid.triangulation().n_active_cells());
+    const double  cell_area = grid.cell_size()[0] * grid.cell_size()[1];
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int c = cell->active_cell_index();
+          fill[c]      = cell_moments.empty() ? 0. : cell_moments[c].v / cell_area;
+          subdomain[c] = cell->subdomain_id();
+        }
+    grid_out.add_data_vector(fill, "material_fraction");
+    grid_out.add_data_vector(subdomain, "subdomain");
+    grid_out.build_patches();
+    output.write_series("grid", step, load_factor, grid_out);
+
+    Particles::DataOut<2> points_out;
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(MaterialPoints::Property::n_properties,
+                     DataComponentInterpretation::component_is_scalar);
+    for (const unsigned int vector_start :
+         {MaterialPoints::Property::displacement,
+          MaterialPoints::Property::initial_position})
+      interpretation[vector_start] = interpretation[vector_start + 1] =
+        DataComponentInterpretation::component_is_part_of_vector;
+    points_out.build_patches(points.particle_handler(),
+                             MaterialPoints::property_names(),
+                             interpretation);
+    output.write_series("points", step, load_factor, points_out);
+
+    output.write_collections();
+  }
+
+
+
+  void
+  Scene::evaluate_errors()
+  {
+    TimerOutput::Scope t(timer, "errors");
+    run_summary.errors = compute_errors(points, *exact_solution, communicator);
+  }
+
+
+
+  void
+  Scene::run()
+  {
+    total_timer.restart();
+    setup();
+    if (pcout.is_active())
+      run_summary.print_header(pcout.get_stream());
+    if (exact_solution && pcout.is_active())
+      pcout << "exact solution     " << exact_solution->description() << '\n';
+
+    if (output.enabled())
+      write_output(0, 0.);
+
+    for (unsigned int step = 1; step <= n_load_steps; ++step)
+      {
+        const double load_factor = double(step) / n_load_steps;
+        if (step > 1)
+          {
+            TimerOutput::Scope t(timer, "sort points");
+            points.sort_into_cells();
+          }
+        {
+          TimerOutput::Scope t(timer, "assembly");
+          points.compute_cell_moments(cell_moments);
+        }
+        make_constraints();
+        assemble_system(load_factor);
+        const auto solver_report = solve();
+        move_points(step);
+
+        RunSummary::Step record;
+        record.number            = step;
+        record.load_factor       = load_factor;
+        record.solver            = solver_report.method;
+        record.iterations        = solver_report.iterations;
+        record.relative_residual = solver_report.relative_residual;
+        record.n_active_cells    = n_active_cells;
+        run_summary.steps.push_back(record);
+        if (pcout.is_active())
+          run_summary.print_step(pcout.get_stream(), record);
+
+        if (output.writes_step(step, n_load_steps))
+          write_output(step, load_factor);
+      }
+
+    if (exact_solution)
+      evaluate_errors();
+    finish();
+  }
+
+
+
+  void
+  Scene::finish()
+  {
+    for (const auto &[name, seconds] :
+         timer.get_summary_data(TimerOutput::total_wall_time))
+      run_summary.timing[name] = seconds;
+    run_summary.timing["total"] = total_timer.wall_time();
+
+    if (pcout.is_active())
+      run_summary.print_results(pcout.get_stream());
+
+    std::map<std::string, double> checked = run_summary.errors;
+    checked.insert(run_summary.quantities.begin(), run_summary.quantities.end());
+    std::ostringstream verification_log;
+    const auto         failed = verification.check(checked, verification_log);
+    pcout << verification_log.str();
+
+    // The summary is the run's record for scripts: written even when the
+    // ParaView series are off.
+    output.write_root_file("summary.json", [this](std::ostream &out) {
+      run_summary.write_json(out);
+    });
+
+    if (output.print_timing())
+      {
+        if (Utilities::MPI::n_mpi_processes(communicator) == 1)
+          timer.print_summary();
+        else
+          timer.print_wall_time_statistics(communicator);
+      }
+
+    std::string names;
+    for (const auto &name : failed)
+      names += (names.empty() ? "" : ", ") + name;
+    AssertThrow(failed.empty(),
+                ExcMessage("Verification failed for: " + names + "."));
+  }
+} // namespace bsmpm
