@@ -2,6 +2,7 @@
 
 #include <bsmpm/material_points.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace bsmpm
@@ -164,6 +165,20 @@ namespace bsmpm
               }
             props[Property::displacement] += du[0];
             props[Property::displacement + 1] += du[1];
+            if (props[Property::volume] > 0)
+              {
+                report.max_displacement = std::max(
+                  report.max_displacement,
+                  std::hypot(props[Property::displacement],
+                             props[Property::displacement + 1]));
+                report.max_stress = std::max(
+                  report.max_stress,
+                  std::sqrt(props[Property::stress] * props[Property::stress] +
+                            props[Property::stress + 1] *
+                              props[Property::stress + 1] +
+                            2 * props[Property::stress + 2] *
+                              props[Property::stress + 2]));
+              }
 
             const Point<2> x = particle.get_location() + du;
             if (!grid.contains(x))
@@ -178,6 +193,10 @@ namespace bsmpm
       }
 
     // Make the report the same on every process.
+    report.max_displacement =
+      Utilities::MPI::max(report.max_displacement, grid.mpi_communicator());
+    report.max_stress =
+      Utilities::MPI::max(report.max_stress, grid.mpi_communicator());
     report.n_left_grid =
       Utilities::MPI::sum(report.n_left_grid, grid.mpi_communicator());
     const unsigned int rank = Utilities::MPI::this_mpi_process(grid.mpi_communicator());

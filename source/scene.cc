@@ -231,6 +231,8 @@ namespace bsmpm
   {
     TimerOutput::Scope t(timer, "update points");
     const auto report = points.move(*kernel, material, increment);
+    run_summary.quantities["max_displacement"] = report.max_displacement;
+    run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
       {
         std::ostringstream where;

@@ -33,7 +33,8 @@ namespace bsmpm
 
     struct Report
     {
-      std::string  method;
+      std::string method;
+      /** CG iterations, or refinement steps after a direct solve. */
       unsigned int iterations = 0;
       /** ||K x - b|| / ||b|| after the solve. */
       double relative_residual = 0;
@@ -55,6 +56,7 @@ namespace bsmpm
     double       tolerance           = 1e-12;
     unsigned int max_iterations      = 10000;
     unsigned int automatic_threshold = 100000;
+    unsigned int max_refinements     = 3;
   };
 } // namespace bsmpm
 

@@ -47,6 +47,10 @@ namespace bsmpm
       types::particle_index n_left_grid = 0;
       /** Where one of them would go. */
       Point<2> example;
+      /** Largest total displacement and stress (Frobenius) norms of points
+       * with volume, over all processes: the scales of the solution. */
+      double max_displacement = 0;
+      double max_stress       = 0;
     };
 
     explicit MaterialPoints(const BackgroundGrid &grid);

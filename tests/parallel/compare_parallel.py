@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Runs a scene serially and with mpirun -np N and checks that every error
+and quantity of summary.json agrees to a relative tolerance.
+
+"Agree" means: as fields. Any change in the order of operations (the
+partition, the pivoting of the direct solver) moves the solution by about
+cond(K) times the machine epsilon, and an error that is itself small against
+the solution magnifies that. So absolute errors (A_*, max_A_*) are compared
+relative to the scale of their field (max_displacement, max_stress of the
+serial run), and normalised errors (R_*, L2_*) absolutely; quantities
+relative to themselves.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+
+def run(command, directory):
+    result = subprocess.run(command + ["--set", f"Output/Directory={directory}",
+                                       "--set", "Output/Interval=0",
+                                       "--set", "Output/Timing summary=false"],
+                            capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.stderr.write(result.stdout + result.stderr)
+        raise SystemExit(f"failed: {' '.join(command)}")
+    with open(os.path.join(directory, "summary.json")) as f:
+        return json.load(f)
+
+
+def scale_of(name, quantities):
+    if name.startswith(("A_", "max_A_")):
+        return quantities["max_stress" if "sigma" in name else "max_displacement"]
+    if name.startswith(("R_", "L2_")):
+        return 1.0
+    return None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--bsmpm", required=True)
+    parser.add_argument("--prm", required=True)
+    parser.add_argument("--np", type=int, default=2)
+    parser.add_argument("--tolerance", type=float, default=1e-10)
+    parser.add_argument("--set", action="append", default=[])
+    args = parser.parse_args()
+
+    base = [args.bsmpm, args.prm]
+    for s in args.set:
+        base += ["--set", s]
+    mpirun = ["mpirun", "--oversubscribe", "-np", str(args.np)]
+    if os.geteuid() == 0:
+        mpirun.insert(1, "--allow-run-as-root")
+
+    with tempfile.TemporaryDirectory() as tmp:
+        serial = run(base, os.path.join(tmp, "serial"))
+        parallel = run(mpirun + base, os.path.join(tmp, "parallel"))
+
+    failed = False
+    for key in ("n_cells", "n_dofs", "n_material_points", "n_tracking_points"):
+        if serial[key] != parallel[key]:
+            print(f"{key}: serial {serial[key]} != parallel {parallel[key]}")
+            failed = True
+
+    for section in ("errors", "quantities"):
+        a, b = serial[section], parallel[section]
+        if set(a) != set(b):
+            print(f"{section}: different names {sorted(a)} vs {sorted(b)}")
+            failed = True
+            continue
+        for name in sorted(a):
+            reference = scale_of(name, serial["quantities"]) if section == "errors" else None
+            if reference is None:
+                reference = max(abs(a[name]), abs(b[name]))
+            difference = abs(a[name] - b[name])
+            ok = difference <= args.tolerance * reference
+            print(f"{section}/{name}: serial {a[name]:.15e} np={args.np} "
+                  f"{b[name]:.15e} {'ok' if ok else 'DIFFERENT'}")
+            failed |= not ok
+    print("serial and parallel runs agree" if not failed else "MISMATCH")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
