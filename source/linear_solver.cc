@@ -125,7 +125,7 @@ namespace bsmpm
             previous = norm;
             solver->solve(correction, residual);
             solution += correction;
-            ++report.iterations;
+            ++report.refinement_steps;
           }
       }
     else

@@ -70,6 +70,7 @@ namespace bsmpm
             << ", \"load_factor\": " << json_number(s.load_factor)
             << ", \"solver\": " << json_string(s.solver)
             << ", \"iterations\": " << s.iterations
+            << ", \"refinement_steps\": " << s.refinement_steps
             << ", \"relative_residual\": " << json_number(s.relative_residual)
             << ", \"active_cells\": " << s.n_active_cells << "}";
       }
@@ -106,7 +107,8 @@ namespace bsmpm
     line << std::setw(5) << s.number << "  " << std::setw(11) << std::fixed
          << std::setprecision(6) << s.load_factor << "  " << std::setw(12)
          << s.n_active_cells << "  " << std::left << std::setw(18) << s.solver
-         << std::right << "  " << std::setw(10) << s.iterations << "  "
+         << std::right << "  " << std::setw(10)
+         << (s.iterations > 0 ? std::to_string(s.iterations) : "-") << "  "
          << std::scientific << std::setprecision(1)
          << (s.relative_residual < 1e-12 ? 0. : s.relative_residual) << '\n';
     out << line.str();

@@ -341,6 +341,7 @@ namespace bsmpm
         record.load_factor       = load_factor;
         record.solver            = solver_report.method;
         record.iterations        = solver_report.iterations;
+        record.refinement_steps  = solver_report.refinement_steps;
         record.relative_residual = solver_report.relative_residual;
         record.n_active_cells    = n_active_cells;
         run_summary.steps.push_back(record);

@@ -34,8 +34,10 @@ namespace bsmpm
     struct Report
     {
       std::string method;
-      /** CG iterations, or refinement steps after a direct solve. */
+      /** CG iterations (0 for a direct solve). */
       unsigned int iterations = 0;
+      /** Steps of iterative refinement after a direct solve. */
+      unsigned int refinement_steps = 0;
       /** ||K x - b|| / ||b|| after the solve. */
       double relative_residual = 0;
     };

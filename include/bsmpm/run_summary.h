@@ -21,6 +21,7 @@ namespace bsmpm
       double       load_factor = 0;
       std::string  solver;
       unsigned int iterations        = 0;
+      unsigned int refinement_steps  = 0;
       double       relative_residual = 0;
       unsigned int n_active_cells    = 0;
     };
