@@ -4,6 +4,7 @@
 #include <bsmpm/parameter_tools.h>
 
 #include <cmath>
+#include <functional>
 
 namespace bsmpm
 {
@@ -224,6 +225,91 @@ namespace bsmpm
              Point<2>(upper_right[0], lower_left[1]),
              upper_right,
              Point<2>(lower_left[0], upper_right[1])}};
+  }
+
+
+
+  BodyRegion::BoundaryPoints
+  BodyRegion::boundary_points(const std::string &edge,
+                              const unsigned int n) const
+  {
+    AssertThrow(n >= 2,
+                ExcMessage("Boundary curves: at least 2 points per edge are "
+                           "needed, got " +
+                           std::to_string(n) + "."));
+    // The parts of the boundary, each from its first point to its last, in
+    // counter-clockwise order round the body.
+    std::vector<std::string>                            names;
+    std::vector<std::function<Point<2>(const double)>> parts;
+    if (region_shape == Shape::annulus_sector)
+      {
+        const Sector &a   = annulus;
+        const auto    arc = [a](const double r, const double t0, const double t1) {
+          return [=](const double f) {
+            const double t = t0 + f * (t1 - t0);
+            return Point<2>(a.center[0] + r * std::cos(t),
+                            a.center[1] + r * std::sin(t));
+          };
+        };
+        const auto ray = [a](const double t, const double r0, const double r1) {
+          return [=](const double f) {
+            const double r = r0 + f * (r1 - r0);
+            return Point<2>(a.center[0] + r * std::cos(t),
+                            a.center[1] + r * std::sin(t));
+          };
+        };
+        names = {"start edge", "outer arc", "end edge", "inner arc"};
+        parts = {ray(a.start_angle, a.inner_radius, a.outer_radius),
+                 arc(a.outer_radius, a.start_angle, a.end_angle),
+                 ray(a.end_angle, a.outer_radius, a.inner_radius),
+                 arc(a.inner_radius, a.end_angle, a.start_angle)};
+      }
+    else
+      {
+        AssertThrow(region_shape != Shape::rectangle_minus_disc ||
+                      edge != "boundary",
+                    ExcMessage("Boundary curves: the whole boundary of a "
+                               "rectangle minus a disc is not available as a "
+                               "region edge; give its parts."));
+        const auto c = corners();
+        for (unsigned int k = 0; k < 4; ++k)
+          parts.push_back([p0 = c[k], p1 = c[(k + 1) % 4]](const double f) {
+            return Point<2>(p0 + f * (p1 - p0));
+          });
+        names = {"bottom", "right", "top", "left"};
+      }
+
+    BoundaryPoints result;
+    const auto     sample = [n](const auto &part, const bool skip_last) {
+      std::vector<Point<2>> points;
+      for (unsigned int i = 0; i + (skip_last ? 1 : 0) < n; ++i)
+        points.push_back(part(double(i) / (n - 1)));
+      return points;
+    };
+    if (edge == "boundary")
+      {
+        result.closed = true;
+        for (const auto &part : parts)
+          {
+            result.corners.push_back(result.points.size());
+            const auto points = sample(part, true);
+            result.points.insert(result.points.end(), points.begin(), points.end());
+          }
+        return result;
+      }
+    for (unsigned int k = 0; k < names.size(); ++k)
+      if (names[k] == edge)
+        {
+          result.points = sample(parts[k], false);
+          return result;
+        }
+    std::string known;
+    for (const auto &name : names)
+      known += "'" + name + "', ";
+    AssertThrow(false,
+                ExcMessage("Boundary curves: the body region has no edge '" +
+                           edge + "'; it has " + known + "and 'boundary'."));
+    return result;
   }
 
 

@@ -2,6 +2,7 @@
 
 #include <bsmpm/error_measures.h>
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
@@ -80,5 +81,51 @@ namespace bsmpm
     errors["L2_u"]     = u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2 / volume);
     errors["L2_sigma"] = s_norm2 > 0 ? std::sqrt(s_err2 / s_norm2) : std::sqrt(s_err2 / volume);
     return errors;
+  }
+
+
+
+  std::map<std::string, double>
+  compute_radius_errors(const BoundaryCurves &curves, const LameCylinder &lame)
+  {
+    // (initial radius, mean deformed radius, mean relative error) per arc.
+    std::vector<std::array<double, 3>> arcs;
+    for (const auto &curve : curves.get_curves())
+      {
+        double r_min = std::numeric_limits<double>::max(), r_max = 0;
+        for (const auto &x : curve.initial_positions)
+          {
+            const double r = x.distance(lame.axis());
+            r_min          = std::min(r_min, r);
+            r_max          = std::max(r_max, r);
+          }
+        if (r_max - r_min > 1e-9 * r_max)
+          continue; // not an arc about the axis
+        const double r0    = (r_min + r_max) / 2;
+        const double exact = r0 + lame.radial_displacement(r0);
+        const unsigned int n = 1000;
+        double             mean = 0, error = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const double r =
+              curve.spline->value(double(i) / (n - 1)).distance(lame.axis());
+            mean += r / n;
+            error += std::abs(r - exact) / exact / n;
+          }
+        arcs.push_back({{r0, mean, error}});
+      }
+
+    std::map<std::string, double> quantities;
+    if (arcs.empty())
+      return quantities;
+    std::sort(arcs.begin(), arcs.end());
+    quantities["inner_radius"]       = arcs.front()[1];
+    quantities["inner_radius_error"] = arcs.front()[2];
+    if (arcs.size() > 1)
+      {
+        quantities["outer_radius"]       = arcs.back()[1];
+        quantities["outer_radius_error"] = arcs.back()[2];
+      }
+    return quantities;
   }
 } // namespace bsmpm

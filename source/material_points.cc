@@ -2,7 +2,9 @@
 
 #include <bsmpm/material_points.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace bsmpm
@@ -57,8 +59,9 @@ namespace bsmpm
 
 
   void
-  MaterialPoints::generate(const MaterialPointLayout &layout,
-                           const BodyRegion &         region)
+  MaterialPoints::generate(const MaterialPointLayout &                   layout,
+                           const BodyRegion &                            region,
+                           const std::function<bool(const Point<2> &)> &excluded)
   {
     particles.initialize(grid.triangulation(),
                          grid.mapping(),
@@ -67,7 +70,8 @@ namespace bsmpm
     // Every process walks the whole layout, so that ids do not depend on the
     // partition, and keeps the points of its own cells.
     layout.for_each_point(grid, region, [&](const Point<2> &p, double volume) {
-      insert(p, volume, next_id++);
+      if (!excluded || !excluded(p))
+        insert(p, volume, next_id++);
     });
     n_material_points = next_id;
     AssertThrow(n_material_points > 0,
@@ -137,6 +141,7 @@ namespace bsmpm
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
     bool                found_example = false;
+    tracked_local.clear();
 
     std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
     Q1CellKernel::LocalVector            d;
@@ -189,6 +194,8 @@ namespace bsmpm
                 found_example = true;
               }
             particle.set_location(x);
+            if (!tracked_slot.empty())
+              record_if_tracked(particle.get_id(), x);
           }
       }
 
@@ -223,6 +230,111 @@ namespace bsmpm
                            std::to_string(before -
                                           particles.n_global_particles()) +
                            " of them left the grid."));
+  }
+
+
+
+  std::vector<types::particle_index>
+  MaterialPoints::outer_layer(const std::vector<Point<2>> &corners,
+                              const bool                   closed) const
+  {
+    std::vector<types::particle_index> layer;
+    const unsigned int n_sides = closed ? corners.size() : corners.size() - 1;
+    for (unsigned int k = 0; k < n_sides; ++k)
+      {
+        const Point<2>     p0 = corners[k], p1 = corners[(k + 1) % corners.size()];
+        const double       length = p0.distance(p1);
+        const Tensor<1, 2> along  = (p1 - p0) / length;
+        const Tensor<1, 2> inward({-along[1], along[0]});
+        const double       tolerance = 1e-9 * length;
+
+        // Distance to the side of the nearest points beside it, then those.
+        double nearest = std::numeric_limits<double>::max();
+        for (const auto &particle : particles)
+          {
+            const Tensor<1, 2> d = particle.get_location() - p0;
+            if (particle.get_properties()[Property::volume] > 0 &&
+                d * along >= -tolerance && d * along <= length + tolerance &&
+                d * inward >= -tolerance)
+              nearest = std::min(nearest, d * inward);
+          }
+        nearest = Utilities::MPI::min(nearest, grid.mpi_communicator());
+
+        std::vector<std::pair<double, types::particle_index>> side;
+        for (const auto &particle : particles)
+          {
+            const Tensor<1, 2> d = particle.get_location() - p0;
+            if (particle.get_properties()[Property::volume] > 0 &&
+                d * along >= -tolerance && d * along <= length + tolerance &&
+                std::abs(d * inward - nearest) <= tolerance)
+              side.emplace_back(d * along, particle.get_id());
+          }
+        std::vector<std::pair<double, types::particle_index>> all;
+        for (const auto &part :
+             Utilities::MPI::all_gather(grid.mpi_communicator(), side))
+          all.insert(all.end(), part.begin(), part.end());
+        AssertThrow(!all.empty(),
+                    ExcMessage("Boundary curves: no material point lies "
+                               "along side " +
+                               std::to_string(k) + " of the region."));
+        std::sort(all.begin(), all.end());
+        for (const auto &[position, id] : all)
+          if (layer.empty() || layer.back() != id)
+            layer.push_back(id);
+      }
+    if (closed && layer.size() > 1 && layer.front() == layer.back())
+      layer.pop_back();
+    return layer;
+  }
+
+
+
+  void
+  MaterialPoints::track(const std::vector<types::particle_index> &ids)
+  {
+    tracked_slot.assign(next_id, numbers::invalid_unsigned_int);
+    for (unsigned int slot = 0; slot < ids.size(); ++slot)
+      {
+        AssertThrow(ids[slot] < next_id,
+                    ExcMessage("Tracked point id " + std::to_string(ids[slot]) +
+                               " does not exist."));
+        tracked_slot[ids[slot]] = slot;
+      }
+    tracked_local.clear();
+    for (const auto &particle : particles)
+      record_if_tracked(particle.get_id(), particle.get_location());
+  }
+
+
+
+  void
+  MaterialPoints::record_if_tracked(const types::particle_index id,
+                                    const Point<2> &            x)
+  {
+    const unsigned int slot = tracked_slot[id];
+    if (slot != numbers::invalid_unsigned_int)
+      tracked_local.emplace_back(slot, x);
+  }
+
+
+
+  std::vector<Point<2>>
+  MaterialPoints::tracked_positions() const
+  {
+    const auto all =
+      Utilities::MPI::all_gather(grid.mpi_communicator(), tracked_local);
+    std::size_t n = 0;
+    for (const auto &part : all)
+      n += part.size();
+    std::vector<Point<2>> positions(n);
+    for (const auto &part : all)
+      for (const auto &[slot, x] : part)
+        {
+          AssertThrow(slot < n,
+                      ExcMessage("A tracked boundary point was lost."));
+          positions[slot] = x;
+        }
+    return positions;
   }
 
 

@@ -9,6 +9,7 @@
 
 #include <deal.II/particles/data_out.h>
 
+#include <bsmpm/curve_vtk_writer.h>
 #include <bsmpm/error_measures.h>
 #include <bsmpm/parameter_tools.h>
 #include <bsmpm/scene.h>
@@ -54,6 +55,8 @@ namespace bsmpm
     LinearElasticMaterial::declare_parameters(prm);
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
+    BoundaryCurves::declare_parameters(prm);
+    NeumannLoads::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
@@ -75,6 +78,8 @@ namespace bsmpm
     material.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
+    boundary_curves.parse_parameters(prm);
+    neumann_loads.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
@@ -90,7 +95,14 @@ namespace bsmpm
     output.prepare_directory();
 
     grid.create();
-    points.generate(layout, region);
+    // Curves given by positions exist before the material points, which
+    // they may trim; curves through material points after them.
+    boundary_curves.create_initial_curves(region);
+    points.generate(layout, region, [this](const Point<2> &p) {
+      return boundary_curves.trims(p);
+    });
+    if (!boundary_curves.empty())
+      boundary_curves.create_points(points, region);
     kernel = std::make_unique<Q1CellKernel>(grid.fe(),
                                             grid.cell_size(),
                                             material.stiffness());
@@ -156,9 +168,14 @@ namespace bsmpm
 
     constraints.clear();
     constraints.reinit(grid.locally_relevant_dofs());
+    unsupported_dofs.clear();
     for (const auto i : grid.locally_relevant_dofs())
       if (support(i) == 0.)
-        constraints.add_line(i);
+        {
+          constraints.add_line(i);
+          if (grid.locally_owned_dofs().is_element(i))
+            unsupported_dofs.push_back(i);
+        }
     grid.make_face_constraints(constraints);
     constraints.close();
   }
@@ -168,7 +185,7 @@ namespace bsmpm
   void
   Scene::assemble_system(const double load_factor)
   {
-    TimerOutput::Scope t(timer, "assembly");
+    timer.enter_subsection("assembly");
     system_matrix = 0;
     system_rhs    = 0;
 
@@ -201,6 +218,22 @@ namespace bsmpm
         cell->get_dof_indices(dof_indices);
         constraints.distribute_local_to_global(
           cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+      }
+    // No cell assembles into the rows of unsupported DoFs: give them a
+    // diagonal of the material's scale (their solution is zero).
+    for (const auto i : unsupported_dofs)
+      system_matrix.add(i, i, material.stiffness()[0][0]);
+    timer.leave_subsection("assembly");
+    if (boundary_curves.has_loads())
+      {
+        TimerOutput::Scope t(timer, "neumann loads");
+        neumann_loads.assemble(boundary_curves,
+                               grid,
+                               *kernel,
+                               exact_solution.get(),
+                               load_factor,
+                               constraints,
+                               system_rhs);
       }
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
@@ -251,6 +284,17 @@ namespace bsmpm
 
 
   void
+  Scene::update_curves()
+  {
+    if (boundary_curves.empty())
+      return;
+    TimerOutput::Scope t(timer, "curves");
+    boundary_curves.update(points, grid);
+  }
+
+
+
+  void
   Scene::write_output(const unsigned int step, const double load_factor)
   {
     TimerOutput::Scope t(timer, "output");
@@ -292,6 +336,33 @@ namespace bsmpm
                              interpretation);
     output.write_series("points", step, load_factor, points_out);
 
+    if (!boundary_curves.empty())
+      {
+        // Gauss points live where their cells do: gather them for the file.
+        std::vector<double> local;
+        for (const auto &g : neumann_loads.quadrature_points())
+          local.insert(local.end(),
+                       {g.position[0], g.position[1], g.traction[0],
+                        g.traction[1], g.weight});
+        std::vector<NeumannLoads::QuadraturePoint> gauss;
+        for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
+          for (std::size_t i = 0; i + 4 < part.size(); i += 5)
+            gauss.push_back({Point<2>(part[i], part[i + 1]),
+                             Tensor<1, 2>({part[i + 2], part[i + 3]}),
+                             part[i + 4]});
+        output.write_serial_series("curves", "vtp", step, load_factor,
+                                   [this](const std::string &file) {
+                                     CurveVtkWriter::write_curves(file,
+                                                                  boundary_curves);
+                                   });
+        output.write_serial_series("curve_points", "vtp", step, load_factor,
+                                   [&](const std::string &file) {
+                                     CurveVtkWriter::write_points(file,
+                                                                  boundary_curves,
+                                                                  gauss);
+                                   });
+      }
+
     output.write_collections();
   }
 
@@ -302,6 +373,10 @@ namespace bsmpm
   {
     TimerOutput::Scope t(timer, "errors");
     run_summary.errors = compute_errors(points, *exact_solution, communicator);
+    if (const auto lame = dynamic_cast<const LameCylinder *>(exact_solution.get()))
+      for (const auto &[name, value] :
+           compute_radius_errors(boundary_curves, *lame))
+        run_summary.quantities[name] = value;
   }
 
 
@@ -316,6 +391,7 @@ namespace bsmpm
     if (exact_solution && pcout.is_active())
       pcout << "exact solution     " << exact_solution->description() << '\n';
 
+    update_curves();
     if (output.enabled())
       write_output(0, 0.);
 
@@ -335,6 +411,13 @@ namespace bsmpm
         assemble_system(load_factor);
         const auto solver_report = solve();
         move_points(step);
+        update_curves();
+        if (boundary_curves.has_loads())
+          {
+            const Tensor<1, 2> force = neumann_loads.resultant(communicator);
+            run_summary.quantities["traction_resultant_x"] = force[0];
+            run_summary.quantities["traction_resultant_y"] = force[1];
+          }
 
         RunSummary::Step record;
         record.number            = step;

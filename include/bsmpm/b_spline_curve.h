@@ -5,7 +5,11 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace bsmpm
@@ -45,8 +49,8 @@ namespace bsmpm
      * joins the first (do not repeat it). @p marked_corners are indices into
      * @p points where the curve must keep a sharp corner.
      */
-    BSplineCurve(const std::vector<Point<2>> & points,
-                 const bool                    closed,
+    BSplineCurve(const std::vector<Point<2>>     &points,
+                 const bool                       closed,
                  const std::vector<unsigned int> &marked_corners = {});
 
     bool
@@ -157,8 +161,9 @@ namespace bsmpm
 
     /** Length of segment @p k between local parameters t0 <= t1 in [0, 1]. */
     double
-    segment_length(const unsigned int k, const double t0, const double t1)
-      const;
+    segment_length(const unsigned int k,
+                   const double       t0,
+                   const double       t1) const;
 
     /** Local parameter in [0, 1] of @p u within segment @p k. */
     double
@@ -167,6 +172,67 @@ namespace bsmpm
       return (u - breaks[k]) / (breaks[k + 1] - breaks[k]);
     }
   };
+
+
+
+  namespace internal
+  {
+    /**
+     * The local parameters t in (0, 1) where the cubic with Bernstein
+     * coefficients @p c has zero derivative, in increasing order. Between
+     * them the cubic is monotone.
+     */
+    std::vector<double>
+    bezier_turning_points(const std::array<double, 4> &c);
+
+    /**
+     * The root in [lo, hi] of a function that changes sign there (or is zero
+     * at an end), to machine precision for t of order one: Newton steps,
+     * replaced by bisection whenever they would leave the bracket or do not
+     * halve the step (Numerical Recipes' rtsafe). @p f returns
+     * {f(t), f'(t)}. Of several roots in the bracket it finds one where f
+     * goes from the sign of f(lo) to that of f(hi).
+     */
+    template <typename Function>
+    double
+    safeguarded_newton(const Function &f, double lo, double hi)
+    {
+      const double f_lo = f(lo)[0], f_hi = f(hi)[0];
+      if (f_lo == 0)
+        return lo;
+      if (f_hi == 0)
+        return hi;
+      Assert(f_lo * f_hi < 0, ExcMessage("The root is not bracketed."));
+      if (f_lo > 0)
+        std::swap(lo, hi); // from here on f(lo) < 0 < f(hi)
+
+      const double eps  = std::numeric_limits<double>::epsilon();
+      double       t    = 0.5 * (lo + hi);
+      double       step = hi - lo;
+      for (unsigned int i = 0; i < 200; ++i)
+        {
+          const std::array<double, 2> ft = f(t);
+          if (ft[0] == 0)
+            return t;
+          (ft[0] < 0 ? lo : hi) = t;
+
+          const double last_step = step;
+          step                   = ft[0] / ft[1];
+          double next            = t - step;
+          if (!((next - lo) * (next - hi) < 0) ||
+              std::abs(2 * step) > std::abs(last_step))
+            {
+              next = 0.5 * (lo + hi);
+              step = t - next;
+            }
+          if (std::abs(next - t) <= eps * std::max(1., std::abs(t)) ||
+              std::abs(hi - lo) <= 2 * eps * std::max(1., std::abs(t)))
+            return next;
+          t = next;
+        }
+      return t;
+    }
+  } // namespace internal
 } // namespace bsmpm
 
 #endif

@@ -6,6 +6,7 @@
 #include <deal.II/base/point.h>
 
 #include <string>
+#include <vector>
 
 namespace bsmpm
 {
@@ -54,6 +55,26 @@ namespace bsmpm
      * starting at the lower left corner before rotation. */
     std::array<Point<2>, 4>
     corners() const;
+
+    /** Points along a part of the region's boundary, ordered so that the
+     * body lies to their left. */
+    struct BoundaryPoints
+    {
+      std::vector<Point<2>>     points;
+      bool                      closed = false;
+      std::vector<unsigned int> corners;
+    };
+
+    /**
+     * @p n_points equally spaced points (by length) along part @p edge of the
+     * boundary, both ends included: for (rotated) rectangles "bottom",
+     * "right", "top", "left" (in the rectangle's own frame); for annulus
+     * sectors "inner arc", "outer arc", "start edge", "end edge"; for both
+     * "boundary", the whole closed boundary with @p n_points per side and its
+     * corners marked.
+     */
+    BoundaryPoints
+    boundary_points(const std::string &edge, const unsigned int n_points) const;
 
     /** Data of an annulus sector (angles in radians). */
     struct Sector

@@ -1,6 +1,7 @@
 #ifndef bsmpm_error_measures_h
 #define bsmpm_error_measures_h
 
+#include <bsmpm/boundary_curves.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/material_points.h>
 
@@ -26,6 +27,18 @@ namespace bsmpm
   compute_errors(const MaterialPoints &points,
                  const ExactSolution & exact,
                  const MPI_Comm        communicator);
+
+  /**
+   * Radii of the deformed boundary arcs of a Lame cylinder (paper Sec. 4.3):
+   * for each curve whose initial points lie on a circle about the axis,
+   * 1000 points equally spaced in the curve parameter are sampled on the
+   * deformed curve and their distances r to the axis compared with the exact
+   * deformed radius R = r0 + u_r(r0). Returns, for the innermost and the
+   * outermost such curve, inner_/outer_radius (mean r) and
+   * inner_/outer_radius_error (mean |r - R| / R).
+   */
+  std::map<std::string, double>
+  compute_radius_errors(const BoundaryCurves &curves, const LameCylinder &lame);
 } // namespace bsmpm
 
 #endif

@@ -143,6 +143,11 @@ namespace bsmpm
     {
       return p;
     }
+    const Point<2> &
+    axis() const
+    {
+      return center;
+    }
     /** Radial displacement at radius @p r. */
     double
     radial_displacement(const double r) const;

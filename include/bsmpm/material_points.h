@@ -11,6 +11,7 @@
 #include <bsmpm/material_point_layout.h>
 #include <bsmpm/q1_cell_kernel.h>
 
+#include <functional>
 #include <vector>
 
 namespace bsmpm
@@ -56,11 +57,14 @@ namespace bsmpm
     explicit MaterialPoints(const BackgroundGrid &grid);
 
     /**
-     * Creates the material points of @p layout in @p region. Throws if a
-     * point lies outside the grid or if the region holds no point.
+     * Creates the material points of @p layout in @p region, except those
+     * for which @p excluded (if given) is true. Throws if a point lies
+     * outside the grid or if the region holds no point.
      */
     void
-    generate(const MaterialPointLayout &layout, const BodyRegion &region);
+    generate(const MaterialPointLayout &                   layout,
+             const BodyRegion &                            region,
+             const std::function<bool(const Point<2> &)> &excluded = {});
 
     /**
      * Adds zero-volume tracking points at @p positions (the same list on
@@ -112,6 +116,29 @@ namespace bsmpm
     void
     sort_into_cells();
 
+    /**
+     * The outer layer of material points along a straight polyline (its
+     * vertices @p corners, closed or not): along each side, the points with
+     * volume nearest to it on its left, ordered along it. Returns their ids,
+     * the same on every process; for a closed polyline each corner point
+     * appears once.
+     */
+    std::vector<types::particle_index>
+    outer_layer(const std::vector<Point<2>> &corners, const bool closed) const;
+
+    /**
+     * Marks the points with ids @p ids (the same list on every process) as
+     * tracked: their current positions are available, in this order, from
+     * tracked_positions() at any time, at no extra pass over the points.
+     */
+    void
+    track(const std::vector<types::particle_index> &ids);
+
+    /** Current positions of the tracked points, in the order given to
+     * track(), on every process. */
+    std::vector<Point<2>>
+    tracked_positions() const;
+
     /** Property names and interpretations for Particles::DataOut. */
     static std::vector<std::string>
     property_names();
@@ -123,10 +150,19 @@ namespace bsmpm
            const double                 volume,
            const types::particle_index  id);
 
+    /** Records the position of @p particle if it is tracked. */
+    void
+    record_if_tracked(const types::particle_index id, const Point<2> &x);
+
     const BackgroundGrid &        grid;
     Particles::ParticleHandler<2> particles;
     types::particle_index         n_material_points = 0;
     types::particle_index         next_id           = 0;
+
+    /** Slot of each particle id in the tracked list, or invalid. */
+    std::vector<unsigned int> tracked_slot;
+    /** Positions of the locally owned tracked points (slot, position). */
+    std::vector<std::pair<unsigned int, Point<2>>> tracked_local;
   };
 } // namespace bsmpm
 

@@ -12,11 +12,13 @@
 
 #include <bsmpm/background_grid.h>
 #include <bsmpm/body_region.h>
+#include <bsmpm/boundary_curves.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/linear_solver.h>
 #include <bsmpm/material.h>
 #include <bsmpm/material_point_layout.h>
 #include <bsmpm/material_points.h>
+#include <bsmpm/neumann_loads.h>
 #include <bsmpm/output_writer.h>
 #include <bsmpm/q1_cell_kernel.h>
 #include <bsmpm/run_summary.h>
@@ -36,8 +38,9 @@ namespace bsmpm
    *
    *   sort points into cells -> constrain the DoFs of empty cells ->
    *   assemble K and r = f_ext(lambda) - f_int(sigma_n) from the material
-   *   points -> solve K du = r -> move the points (strain, stress,
-   *   displacement, position) -> errors and output.
+   *   points and the tractions on the boundary curves -> solve K du = r ->
+   *   move the points (strain, stress, displacement, position) -> rebuild
+   *   the boundary curves through their moved points -> errors and output.
    *
    * The grid is reset after every step: only the points move.
    */
@@ -77,6 +80,8 @@ namespace bsmpm
     void
     move_points(const unsigned int step);
     void
+    update_curves();
+    void
     write_output(const unsigned int step, const double load_factor);
     void
     evaluate_errors();
@@ -96,6 +101,8 @@ namespace bsmpm
     BodyRegion          region;
     MaterialPointLayout layout;
     MaterialPoints      points;
+    BoundaryCurves      boundary_curves;
+    NeumannLoads        neumann_loads;
     LinearSolver        linear_solver;
     OutputWriter        output;
     Verification        verification;
@@ -108,6 +115,8 @@ namespace bsmpm
     LinearAlgebra::distributed::Vector<double> increment;
     std::vector<CellMoments>                   cell_moments;
     unsigned int                               n_active_cells = 0;
+    /** Locally owned DoFs that no cell with material touches. */
+    std::vector<types::global_dof_index> unsupported_dofs;
 
     RunSummary run_summary;
   };

@@ -1,0 +1,191 @@
+#ifndef bsmpm_boundary_curves_h
+#define bsmpm_boundary_curves_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <bsmpm/b_spline_curve.h>
+#include <bsmpm/background_grid.h>
+#include <bsmpm/body_region.h>
+#include <bsmpm/curve_cell_intersection.h>
+#include <bsmpm/material_points.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * What acts on a stretch of a boundary curve: nothing, a traction (paper
+   * Sec. 3.4) or a support (paper Sec. 3.5).
+   *
+   * In a parameter file a condition reads "[i-j:] kind [arguments]", where
+   * i-j restricts it to the segments between points i and j of the chain
+   * (0-based; the whole chain if absent):
+   * - free
+   * - pressure <p>: p in Pa on the current curve, along the inward normal
+   *   (a follower load);
+   * - traction <tx>; <ty>: a traction vector in Pa, as expressions of x, y;
+   * - exact traction: sigma(x) n from the scene's exact solution.
+   * Loads are scaled by the load factor of the step.
+   */
+  struct CurveCondition
+  {
+    enum class Kind
+    {
+      free,
+      pressure,
+      traction,
+      exact_traction
+    };
+
+    Kind         kind          = Kind::free;
+    unsigned int first_segment = 0;
+    unsigned int end_segment   = numbers::invalid_unsigned_int;
+    double       pressure      = 0;
+    std::shared_ptr<FunctionParser<2>> traction;
+
+    /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
+    static CurveCondition
+    parse(const std::string &text, const std::string &where);
+
+    /** Whether the condition covers segment @p k of a chain of
+     * @p n_segments segments (ranges may wrap round a closed chain). */
+    bool
+    covers(const unsigned int k, const unsigned int n_segments) const;
+
+    bool
+    is_load() const
+    {
+      return kind != Kind::free;
+    }
+
+    /** Name of the kind, as in the parameter file. */
+    std::string
+    kind_name() const;
+  };
+
+
+
+  /**
+   * One boundary curve: an ordered chain of boundary points (zero-volume
+   * tracking points or material points) that moves with the body, the cubic
+   * B-spline through their current positions, and its pieces per grid cell,
+   * both rebuilt every load step.
+   */
+  struct BoundaryCurve
+  {
+    std::string                        name;
+    bool                               closed = false;
+    std::vector<unsigned int>          corners;
+    std::vector<CurveCondition>        conditions;
+    bool                               trims_material_points = false;
+    /** Slots of the chain's points in MaterialPoints' tracked list. */
+    std::vector<unsigned int>          tracked_slots;
+    std::vector<Point<2>>              positions;
+    /** Positions of the points at the start of the run. */
+    std::vector<Point<2>>              initial_positions;
+    std::unique_ptr<BSplineCurve>      spline;
+    std::vector<CurvePiece>            pieces;
+
+    unsigned int
+    n_segments() const
+    {
+      return closed ? positions.size() : positions.size() - 1;
+    }
+
+    /** The condition on segment @p k (the last one given that covers it),
+     * or nullptr if the segment is free. */
+    const CurveCondition *
+    condition_of_segment(const unsigned int k) const;
+  };
+
+
+
+  /**
+   * The boundary of the body as B-spline curves (paper Sec. 3.2): where their
+   * points come from, how they move, and their rebuilding and cutting by the
+   * grid at every load step (paper Sec. 3.3). Curves are global: their few
+   * points are gathered on every process, which builds the same splines.
+   *
+   * A curve is declared in a subsection "Curve 1" ... "Curve 8" of "Boundary
+   * curves"; see declare_parameters() for its entries.
+   */
+  class BoundaryCurves
+  {
+  public:
+    static constexpr unsigned int max_curves = 8;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    bool
+    empty() const
+    {
+      return curves.empty();
+    }
+
+    /** Whether a material point at @p p is cut away by a trimming curve
+     * (it lies on the outer side of it). */
+    bool
+    trims(const Point<2> &p) const;
+
+    /**
+     * Builds the initial splines of the curves whose points are given
+     * directly (coordinates, a file, the edges of the body region): they
+     * must exist before the material points, to trim them.
+     */
+    void
+    create_initial_curves(const BodyRegion &region);
+
+    /**
+     * Inserts the tracking points of the curves, or finds the material
+     * points that form them, and starts tracking them.
+     */
+    void
+    create_points(MaterialPoints &points, const BodyRegion &region);
+
+    /** Rebuilds the splines from the current point positions and cuts them
+     * by @p grid. */
+    void
+    update(const MaterialPoints &points, const BackgroundGrid &grid);
+
+    const std::vector<BoundaryCurve> &
+    get_curves() const
+    {
+      return curves;
+    }
+
+    /** Whether any curve carries a load. */
+    bool
+    has_loads() const;
+
+    /** Total number of boundary points. */
+    unsigned int
+    n_points() const;
+
+  private:
+    /** How the points of a curve are given. */
+    struct Source
+    {
+      std::string           kind; // region edge | coordinates | file |
+                                  // material points
+      std::string           edge;
+      unsigned int          n_points = 0;
+      std::vector<Point<2>> positions; // for the first three
+    };
+
+    void
+    rebuild(BoundaryCurve &curve) const;
+
+    std::vector<BoundaryCurve> curves;
+    std::vector<Source>        sources;
+  };
+} // namespace bsmpm
+
+#endif

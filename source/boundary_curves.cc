@@ -1,0 +1,466 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <bsmpm/boundary_curves.h>
+#include <bsmpm/parameter_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace bsmpm
+{
+  namespace
+  {
+    std::string
+    curve_section(const unsigned int c)
+    {
+      return "Curve " + std::to_string(c + 1);
+    }
+
+    /** "x, y; x, y; ..." as points. */
+    std::vector<Point<2>>
+    parse_coordinates(const std::string &text, const std::string &where)
+    {
+      std::vector<Point<2>> points;
+      for (const auto &pair : Utilities::split_string_list(text, ';'))
+        {
+          if (pair.empty())
+            continue;
+          const auto xy = Utilities::split_string_list(pair, ',');
+          AssertThrow(xy.size() == 2,
+                      ExcMessage(where + ": '" + pair +
+                                 "' is not a point 'x, y'."));
+          try
+            {
+              const Point<2> p(Utilities::string_to_double(xy[0]),
+                               Utilities::string_to_double(xy[1]));
+              ParameterTools::require_finite(p[0] + p[1], where);
+              points.push_back(p);
+            }
+          catch (const ExceptionBase &)
+            {
+              AssertThrow(false,
+                          ExcMessage(where + ": '" + pair +
+                                     "' is not a point 'x, y'."));
+            }
+        }
+      return points;
+    }
+
+    /** Points of a CSV file: one "x, y" (or "x y") per line; '#' starts a
+     * comment; the first line may be a header. */
+    std::vector<Point<2>>
+    read_points_file(const std::string &file, const std::string &where)
+    {
+      std::ifstream in(file);
+      AssertThrow(in,
+                  ExcMessage(where + ": cannot read the points file '" + file +
+                             "'."));
+      std::vector<Point<2>> points;
+      std::string           line;
+      for (unsigned int number = 1; std::getline(in, line); ++number)
+        {
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (line.empty())
+            continue;
+          std::replace(line.begin(), line.end(), ',', ' ');
+          std::istringstream fields(line);
+          double             x, y;
+          std::string        rest;
+          const bool ok = static_cast<bool>(fields >> x >> y) && !(fields >> rest);
+          if (!ok && number == 1 && std::isalpha(line[0]))
+            continue; // a header
+          AssertThrow(ok && std::isfinite(x) && std::isfinite(y),
+                      ExcMessage(where + ": line " + std::to_string(number) +
+                                 " of '" + file +
+                                 "' is not a point 'x, y': '" + line + "'."));
+          points.emplace_back(x, y);
+        }
+      return points;
+    }
+  } // namespace
+
+
+
+  CurveCondition
+  CurveCondition::parse(const std::string &input, const std::string &where)
+  {
+    CurveCondition condition;
+    std::string    text = Utilities::trim(input);
+
+    const auto colon = text.find(':');
+    if (colon != std::string::npos)
+      {
+        const std::string range = Utilities::trim(text.substr(0, colon));
+        const auto        dash  = range.find('-');
+        try
+          {
+            AssertThrow(dash != std::string::npos, ExcInternalError());
+            condition.first_segment =
+              Utilities::string_to_int(Utilities::trim(range.substr(0, dash)));
+            condition.end_segment =
+              Utilities::string_to_int(Utilities::trim(range.substr(dash + 1)));
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage(where + ": '" + range +
+                                   "' is not a range of points 'i-j'."));
+          }
+        text = Utilities::trim(text.substr(colon + 1));
+      }
+
+    const auto        space = text.find(' ');
+    const std::string kind  = text.substr(0, space);
+    const std::string arguments =
+      space == std::string::npos ? "" : Utilities::trim(text.substr(space + 1));
+
+    if (kind == "free" && arguments.empty())
+      condition.kind = Kind::free;
+    else if (kind == "pressure")
+      {
+        condition.kind = Kind::pressure;
+        try
+          {
+            condition.pressure = Utilities::string_to_double(arguments);
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage(where + ": 'pressure' needs a number, got '" +
+                                   arguments + "'."));
+          }
+        ParameterTools::require_finite(condition.pressure, where);
+      }
+    else if (kind == "traction")
+      {
+        condition.kind     = Kind::traction;
+        condition.traction = std::make_shared<FunctionParser<2>>(2);
+        try
+          {
+            condition.traction->initialize("x,y",
+                                           arguments,
+                                           {{"pi", numbers::PI}});
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage(where + ": 'traction' needs two expressions "
+                                           "of x and y separated by ';', got '" +
+                                   arguments + "'."));
+          }
+      }
+    else if (text == "exact traction")
+      condition.kind = Kind::exact_traction;
+    else
+      AssertThrow(false,
+                  ExcMessage(where + ": unknown condition '" + text +
+                             "'. Known: free, pressure <p>, traction <tx>; "
+                             "<ty>, exact traction."));
+    return condition;
+  }
+
+
+
+  bool
+  CurveCondition::covers(const unsigned int k,
+                         const unsigned int n_segments) const
+  {
+    const unsigned int end = std::min(end_segment, n_segments);
+    if (first_segment <= end)
+      return k >= first_segment && k < end;
+    return k >= first_segment || k < end; // wraps round a closed chain
+  }
+
+
+
+  std::string
+  CurveCondition::kind_name() const
+  {
+    switch (kind)
+      {
+        case Kind::free:
+          return "free";
+        case Kind::pressure:
+          return "pressure";
+        case Kind::traction:
+          return "traction";
+        case Kind::exact_traction:
+          return "exact traction";
+      }
+    return "";
+  }
+
+
+
+  const CurveCondition *
+  BoundaryCurve::condition_of_segment(const unsigned int k) const
+  {
+    const CurveCondition *found = nullptr;
+    for (const auto &c : conditions)
+      if (c.covers(k, n_segments()))
+        found = &c;
+    return (found && found->kind != CurveCondition::Kind::free) ? found :
+                                                                    nullptr;
+  }
+
+
+
+  void
+  BoundaryCurves::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary curves");
+    for (unsigned int c = 0; c < max_curves; ++c)
+      {
+        prm.enter_subsection(curve_section(c));
+        prm.declare_entry(
+          "Points",
+          "none",
+          Patterns::Selection("none|region edge|coordinates|file|"
+                              "material points"),
+          "Where the boundary points of this curve come from: none (no "
+          "curve); region edge (zero-volume tracking points along an edge "
+          "of the body region); coordinates or file (tracking points at "
+          "given positions); material points (the outer layer of material "
+          "points along an edge of the body region). The body must lie to "
+          "the left of the chain's direction.");
+        prm.declare_entry("Edge",
+                          "boundary",
+                          Patterns::Anything(),
+                          "region edge, material points: the part of the "
+                          "body region's boundary (bottom, right, top, left; "
+                          "inner arc, outer arc, start edge, end edge; "
+                          "boundary).");
+        prm.declare_entry("Number of points",
+                          "5",
+                          Patterns::Integer(2),
+                          "region edge: points per edge, ends included.");
+        prm.declare_entry("Coordinates",
+                          "",
+                          Patterns::Anything(),
+                          "coordinates: 'x0, y0; x1, y1; ...'.");
+        prm.declare_entry("File",
+                          "",
+                          Patterns::Anything(),
+                          "file: CSV file with one 'x, y' per line.");
+        prm.declare_entry("Closed",
+                          "false",
+                          Patterns::Bool(),
+                          "coordinates, file: whether the last point joins "
+                          "the first.");
+        prm.declare_entry("Corners",
+                          "",
+                          Patterns::List(Patterns::Integer(0)),
+                          "Indices of points where the curve keeps a sharp "
+                          "corner (besides those detected).");
+        prm.declare_entry("Trim material points",
+                          "false",
+                          Patterns::Bool(),
+                          "Remove the material points that start on the "
+                          "outer side of this curve.");
+        for (const std::string name :
+             {"Condition", "Condition 2", "Condition 3", "Condition 4"})
+          prm.declare_entry(name,
+                            name == "Condition" ? "free" : "",
+                            Patterns::Anything(),
+                            "'[i-j:] kind [arguments]': free; pressure <p>; "
+                            "traction <tx>; <ty> (expressions of x, y); "
+                            "exact traction. i-j restricts it to the segments "
+                            "between points i and j; later conditions "
+                            "override earlier ones.");
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  BoundaryCurves::parse_parameters(ParameterHandler &prm)
+  {
+    curves.clear();
+    sources.clear();
+    prm.enter_subsection("Boundary curves");
+    for (unsigned int c = 0; c < max_curves; ++c)
+      {
+        prm.enter_subsection(curve_section(c));
+        const std::string where = "Boundary curves/" + curve_section(c);
+        Source            source;
+        source.kind = prm.get("Points");
+        if (source.kind != "none")
+          {
+            BoundaryCurve curve;
+            curve.name   = curve_section(c);
+            curve.closed = prm.get_bool("Closed");
+            for (const auto i : ParameterTools::get_unsigned(prm, "Corners"))
+              curve.corners.push_back(i);
+            curve.trims_material_points = prm.get_bool("Trim material points");
+            for (const std::string name :
+                 {"Condition", "Condition 2", "Condition 3", "Condition 4"})
+              if (!Utilities::trim(prm.get(name)).empty())
+                curve.conditions.push_back(
+                  CurveCondition::parse(prm.get(name), where + "/" + name));
+
+            source.edge     = Utilities::trim(prm.get("Edge"));
+            source.n_points = prm.get_integer("Number of points");
+            if (source.kind == "coordinates")
+              source.positions =
+                parse_coordinates(prm.get("Coordinates"), where + "/Coordinates");
+            else if (source.kind == "file")
+              source.positions = read_points_file(prm.get("File"), where);
+            curves.push_back(std::move(curve));
+            sources.push_back(source);
+          }
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  BoundaryCurves::create_initial_curves(const BodyRegion &region)
+  {
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      {
+        BoundaryCurve &curve  = curves[c];
+        Source &       source = sources[c];
+        if (source.kind == "region edge")
+          {
+            const auto edge =
+              region.boundary_points(source.edge, source.n_points);
+            source.positions = edge.points;
+            curve.closed     = edge.closed;
+            curve.corners.insert(curve.corners.end(),
+                                 edge.corners.begin(),
+                                 edge.corners.end());
+          }
+        if (source.kind != "material points")
+          {
+            curve.positions = source.positions;
+            rebuild(curve);
+          }
+      }
+  }
+
+
+
+  bool
+  BoundaryCurves::trims(const Point<2> &p) const
+  {
+    for (const auto &curve : curves)
+      if (curve.trims_material_points && curve.spline)
+        {
+          const auto closest = curve.spline->closest_point(p);
+          if ((p - closest.point) * curve.spline->outward_normal(closest.u) > 0)
+            return true;
+        }
+    return false;
+  }
+
+
+
+  void
+  BoundaryCurves::create_points(MaterialPoints &  points,
+                                const BodyRegion &region)
+  {
+    std::vector<types::particle_index> tracked;
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      {
+        BoundaryCurve &curve  = curves[c];
+        Source &       source = sources[c];
+        std::vector<types::particle_index> ids;
+        if (source.kind == "material points")
+          {
+            const auto edge = region.boundary_points(source.edge, 2);
+            ids             = points.outer_layer(edge.points, edge.closed);
+            curve.closed    = edge.closed;
+          }
+        else
+          ids = points.add_tracking_points(curve.positions);
+
+        curve.tracked_slots.clear();
+        curve.initial_positions.clear();
+        for (const auto id : ids)
+          {
+            curve.tracked_slots.push_back(tracked.size());
+            tracked.push_back(id);
+          }
+      }
+    points.track(tracked);
+
+    const auto positions = points.tracked_positions();
+    for (auto &curve : curves)
+      for (const unsigned int slot : curve.tracked_slots)
+        curve.initial_positions.push_back(positions[slot]);
+  }
+
+
+
+  void
+  BoundaryCurves::update(const MaterialPoints &points,
+                         const BackgroundGrid &grid)
+  {
+    const std::vector<Point<2>> positions = points.tracked_positions();
+    const UniformGrid           uniform{grid.lower_left(),
+                              grid.cell_size(),
+                              {{grid.n_cells(0), grid.n_cells(1)}}};
+    for (auto &curve : curves)
+      {
+        curve.positions.clear();
+        for (const unsigned int slot : curve.tracked_slots)
+          curve.positions.push_back(positions[slot]);
+        rebuild(curve);
+        curve.pieces = CurveCellIntersection::cut(*curve.spline, uniform);
+      }
+  }
+
+
+
+  void
+  BoundaryCurves::rebuild(BoundaryCurve &curve) const
+  {
+    for (const auto &condition : curve.conditions)
+      AssertThrow(condition.end_segment == numbers::invalid_unsigned_int ||
+                    (condition.first_segment <= curve.n_segments() &&
+                     condition.end_segment <= curve.n_segments()),
+                  ExcMessage("Boundary curves/" + curve.name +
+                             ": a condition's range of points lies beyond "
+                             "the chain of " +
+                             std::to_string(curve.positions.size()) +
+                             " points."));
+    for (const unsigned int corner : curve.corners)
+      AssertThrow(corner < curve.positions.size(),
+                  ExcMessage("Boundary curves/" + curve.name +
+                             ": corner index " + std::to_string(corner) +
+                             " lies beyond the chain."));
+    curve.spline = std::make_unique<BSplineCurve>(curve.positions,
+                                                  curve.closed,
+                                                  curve.corners);
+  }
+
+
+
+  bool
+  BoundaryCurves::has_loads() const
+  {
+    for (const auto &curve : curves)
+      for (const auto &condition : curve.conditions)
+        if (condition.is_load())
+          return true;
+    return false;
+  }
+
+
+
+  unsigned int
+  BoundaryCurves::n_points() const
+  {
+    unsigned int n = 0;
+    for (const auto &curve : curves)
+      n += curve.positions.size();
+    return n;
+  }
+} // namespace bsmpm
