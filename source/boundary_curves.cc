@@ -134,31 +134,41 @@ namespace bsmpm
           }
         ParameterTools::require_finite(condition.pressure, where);
       }
-    else if (kind == "traction")
+    else if ((kind == "traction" || kind == "displacement") &&
+             arguments != "exact")
       {
-        condition.kind     = Kind::traction;
-        condition.traction = std::make_shared<FunctionParser<2>>(2);
+        condition.kind =
+          kind == "traction" ? Kind::traction : Kind::displacement;
+        condition.function = std::make_shared<FunctionParser<2>>(2);
         try
           {
-            condition.traction->initialize("x,y",
+            condition.function->initialize("x,y",
                                            arguments,
                                            {{"pi", numbers::PI}});
           }
         catch (...)
           {
             AssertThrow(false,
-                        ExcMessage(where + ": 'traction' needs two expressions "
-                                           "of x and y separated by ';', got '" +
+                        ExcMessage(where + ": '" + kind +
+                                   "' needs two expressions of x and y "
+                                   "separated by ';', got '" +
                                    arguments + "'."));
           }
       }
     else if (text == "exact traction")
       condition.kind = Kind::exact_traction;
+    else if (text == "displacement exact")
+      condition.kind = Kind::displacement;
+    else if (text == "fixed")
+      condition.kind = Kind::fixed;
+    else if (text == "roller")
+      condition.kind = Kind::roller;
     else
       AssertThrow(false,
                   ExcMessage(where + ": unknown condition '" + text +
                              "'. Known: free, pressure <p>, traction <tx>; "
-                             "<ty>, exact traction."));
+                             "<ty>, exact traction, fixed, roller, "
+                             "displacement exact, displacement <ux>; <uy>."));
     return condition;
   }
 
@@ -189,6 +199,12 @@ namespace bsmpm
           return "traction";
         case Kind::exact_traction:
           return "exact traction";
+        case Kind::fixed:
+          return "fixed";
+        case Kind::roller:
+          return "roller";
+        case Kind::displacement:
+          return "displacement";
       }
     return "";
   }
@@ -255,6 +271,13 @@ namespace bsmpm
                           Patterns::List(Patterns::Integer(0)),
                           "Indices of points where the curve keeps a sharp "
                           "corner (besides those detected).");
+        prm.declare_entry("Dirichlet method",
+                          "implicit boundary",
+                          Patterns::Selection("implicit boundary|nitsche"),
+                          "How the supports of this curve (fixed, roller, "
+                          "displacement) are imposed: by the implicit "
+                          "boundary method (paper Sec. 3.5) or by Nitsche's "
+                          "method.");
         prm.declare_entry("Trim material points",
                           "false",
                           Patterns::Bool(),
@@ -267,9 +290,10 @@ namespace bsmpm
                             Patterns::Anything(),
                             "'[i-j:] kind [arguments]': free; pressure <p>; "
                             "traction <tx>; <ty> (expressions of x, y); "
-                            "exact traction. i-j restricts it to the segments "
-                            "between points i and j; later conditions "
-                            "override earlier ones.");
+                            "exact traction; fixed; roller; displacement "
+                            "exact; displacement <ux>; <uy>. i-j restricts it "
+                            "to the segments between points i and j; later "
+                            "conditions override earlier ones.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -297,6 +321,10 @@ namespace bsmpm
             for (const auto i : ParameterTools::get_unsigned(prm, "Corners"))
               curve.corners.push_back(i);
             curve.trims_material_points = prm.get_bool("Trim material points");
+            curve.dirichlet_method =
+              prm.get("Dirichlet method") == "nitsche" ?
+                BoundaryCurve::DirichletMethod::nitsche :
+                BoundaryCurve::DirichletMethod::implicit_boundary;
             for (const std::string name :
                  {"Condition", "Condition 2", "Condition 3", "Condition 4"})
               if (!Utilities::trim(prm.get(name)).empty())
@@ -391,7 +419,9 @@ namespace bsmpm
       }
     points.track(tracked);
 
-    const auto positions = points.tracked_positions();
+    std::vector<Point<2>> positions;
+    std::vector<Voigt>    stresses;
+    points.tracked_states(positions, stresses);
     for (auto &curve : curves)
       for (const unsigned int slot : curve.tracked_slots)
         curve.initial_positions.push_back(positions[slot]);
@@ -403,15 +433,21 @@ namespace bsmpm
   BoundaryCurves::update(const MaterialPoints &points,
                          const BackgroundGrid &grid)
   {
-    const std::vector<Point<2>> positions = points.tracked_positions();
+    std::vector<Point<2>> positions;
+    std::vector<Voigt>    stresses;
+    points.tracked_states(positions, stresses);
     const UniformGrid           uniform{grid.lower_left(),
                               grid.cell_size(),
                               {{grid.n_cells(0), grid.n_cells(1)}}};
     for (auto &curve : curves)
       {
         curve.positions.clear();
+        curve.stresses.clear();
         for (const unsigned int slot : curve.tracked_slots)
-          curve.positions.push_back(positions[slot]);
+          {
+            curve.positions.push_back(positions[slot]);
+            curve.stresses.push_back(stresses[slot]);
+          }
         rebuild(curve);
         curve.pieces = CurveCellIntersection::cut(*curve.spline, uniform);
       }
@@ -450,6 +486,20 @@ namespace bsmpm
       for (const auto &condition : curve.conditions)
         if (condition.is_load())
           return true;
+    return false;
+  }
+
+
+
+  bool
+  BoundaryCurves::has_supports(
+    const BoundaryCurve::DirichletMethod method) const
+  {
+    for (const auto &curve : curves)
+      if (curve.dirichlet_method == method)
+        for (const auto &condition : curve.conditions)
+          if (condition.is_support())
+            return true;
     return false;
   }
 

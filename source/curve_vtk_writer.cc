@@ -90,7 +90,8 @@ namespace bsmpm
     void
     write_points(const std::string &                                file,
                  const BoundaryCurves &                             curves,
-                 const std::vector<NeumannLoads::QuadraturePoint> &gauss_points)
+                 const std::vector<NeumannLoads::QuadraturePoint> &gauss_points,
+                 const std::vector<ImplicitBoundary::BandPoint> &   band_points)
     {
       auto points   = vtkSmartPointer<vtkPoints>::New();
       auto vertices = vtkSmartPointer<vtkCellArray>::New();
@@ -99,14 +100,17 @@ namespace bsmpm
       kind->SetName("kind");
       auto curve_id = vtkSmartPointer<vtkIntArray>::New();
       curve_id->SetName("curve");
+      auto d_function = vtkSmartPointer<vtkDoubleArray>::New();
+      d_function->SetName("d_function");
 
       const auto add = [&](const Point<2> &x, const int k, const int c,
-                           const Tensor<1, 2> &t) {
+                           const Tensor<1, 2> &t, const double D = 1.) {
         const vtkIdType id = points->InsertNextPoint(x[0], x[1], 0.);
         vertices->InsertNextCell(1, &id);
         kind->InsertNextValue(k);
         curve_id->InsertNextValue(c);
         traction->InsertNextTuple3(t[0], t[1], 0.);
+        d_function->InsertNextValue(D);
       };
 
       const auto &all = curves.get_curves();
@@ -119,6 +123,8 @@ namespace bsmpm
         }
       for (const auto &g : gauss_points)
         add(g.position, 2, 0, g.traction);
+      for (const auto &b : band_points)
+        add(b.position, 3, 0, Tensor<1, 2>(), b.d_function);
 
       auto data = vtkSmartPointer<vtkPolyData>::New();
       data->SetPoints(points);
@@ -126,6 +132,7 @@ namespace bsmpm
       data->GetPointData()->AddArray(kind);
       data->GetPointData()->AddArray(curve_id);
       data->GetPointData()->AddArray(traction);
+      data->GetPointData()->AddArray(d_function);
       write(file, data);
     }
   } // namespace CurveVtkWriter

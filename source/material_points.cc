@@ -46,6 +46,7 @@ namespace bsmpm
 
     std::array<double, Property::n_properties> properties{};
     properties[Property::volume]               = volume;
+    properties[Property::d_function]           = 1.;
     properties[Property::initial_position]     = position[0];
     properties[Property::initial_position + 1] = position[1];
     particles.insert_particle(position,
@@ -136,7 +137,10 @@ namespace bsmpm
   MaterialPoints::MoveReport
   MaterialPoints::move(const Q1CellKernel &                              kernel,
                        const LinearElasticMaterial &                     material,
-                       const LinearAlgebra::distributed::Vector<double> &increment)
+                       const LinearAlgebra::distributed::Vector<double> &increment,
+                       const LinearAlgebra::distributed::Vector<double> *prescribed,
+                       const std::vector<bool> *support_cells,
+                       const SupportFunction &  support)
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
@@ -144,24 +148,37 @@ namespace bsmpm
     tracked_local.clear();
 
     std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
-    Q1CellKernel::LocalVector            d;
+    Q1CellKernel::LocalVector            d, da{}, total;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned() || particles.n_particles_in_cell(cell) == 0)
           continue;
         cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-          d[i] = increment(dof_indices[i]);
-        const auto e = kernel.strain_coefficients(d);
+          {
+            d[i] = increment(dof_indices[i]);
+            if (prescribed)
+              da[i] = (*prescribed)(dof_indices[i]);
+            total[i] = d[i] + da[i];
+          }
+        const auto e = kernel.strain_coefficients(total);
+        const bool near_support =
+          support_cells && (*support_cells)[cell->active_cell_index()];
 
         for (auto &particle : particles.particles_in_cell(cell))
           {
             const Point<2> st = particle.get_reference_location();
             const Voigt    de = e[0] + st[0] * e[1] + st[1] * e[2];
             const Voigt    ds = C * de;
-            const auto     du = kernel.displacement(d, st);
+            auto           du = kernel.displacement(d, st);
+            double         D  = 1;
+            if (near_support)
+              D = support(particle.get_location(), du);
+            if (prescribed)
+              du += kernel.displacement(da, st);
 
-            auto props = particle.get_properties();
+            auto props                  = particle.get_properties();
+            props[Property::d_function] = D;
             for (unsigned int r = 0; r < 3; ++r)
               {
                 props[Property::stress + r] += ds[r];
@@ -195,7 +212,7 @@ namespace bsmpm
               }
             particle.set_location(x);
             if (!tracked_slot.empty())
-              record_if_tracked(particle.get_id(), x);
+              record_if_tracked(particle.get_id(), x, props);
           }
       }
 
@@ -302,39 +319,50 @@ namespace bsmpm
       }
     tracked_local.clear();
     for (const auto &particle : particles)
-      record_if_tracked(particle.get_id(), particle.get_location());
+      record_if_tracked(particle.get_id(),
+                        particle.get_location(),
+                        particle.get_properties());
   }
 
 
 
   void
-  MaterialPoints::record_if_tracked(const types::particle_index id,
-                                    const Point<2> &            x)
+  MaterialPoints::record_if_tracked(const types::particle_index   id,
+                                    const Point<2> &              x,
+                                    const ArrayView<const double> properties)
   {
     const unsigned int slot = tracked_slot[id];
     if (slot != numbers::invalid_unsigned_int)
-      tracked_local.emplace_back(slot, x);
+      tracked_local.push_back({{double(slot),
+                                x[0],
+                                x[1],
+                                properties[Property::stress],
+                                properties[Property::stress + 1],
+                                properties[Property::stress + 2]}});
   }
 
 
 
-  std::vector<Point<2>>
-  MaterialPoints::tracked_positions() const
+  void
+  MaterialPoints::tracked_states(std::vector<Point<2>> &positions,
+                                 std::vector<Voigt> &   stresses) const
   {
     const auto all =
       Utilities::MPI::all_gather(grid.mpi_communicator(), tracked_local);
     std::size_t n = 0;
     for (const auto &part : all)
       n += part.size();
-    std::vector<Point<2>> positions(n);
+    positions.resize(n);
+    stresses.resize(n);
     for (const auto &part : all)
-      for (const auto &[slot, x] : part)
+      for (const auto &state : part)
         {
+          const auto slot = static_cast<std::size_t>(state[0]);
           AssertThrow(slot < n,
                       ExcMessage("A tracked boundary point was lost."));
-          positions[slot] = x;
+          positions[slot] = Point<2>(state[1], state[2]);
+          stresses[slot]  = Voigt({state[3], state[4], state[5]});
         }
-    return positions;
   }
 
 
@@ -352,6 +380,7 @@ namespace bsmpm
             "displacement",
             "displacement",
             "initial_position",
-            "initial_position"};
+            "initial_position",
+            "d_function"};
   }
 } // namespace bsmpm

@@ -48,7 +48,7 @@ namespace bsmpm
         {
           const CurveCondition *condition =
             curve.condition_of_segment(piece.segment);
-          if (condition == nullptr)
+          if (condition == nullptr || !condition->is_load())
             continue;
           const auto cell = grid.locally_owned_cell(piece.cell);
           if (cell == grid.dof_handler().end())
@@ -77,13 +77,13 @@ namespace bsmpm
                     t = -condition->pressure * n;
                     break;
                   case CurveCondition::Kind::traction:
-                    t[0] = condition->traction->value(x, 0);
-                    t[1] = condition->traction->value(x, 1);
+                    t[0] = condition->function->value(x, 0);
+                    t[1] = condition->function->value(x, 1);
                     break;
                   case CurveCondition::Kind::exact_traction:
                     t = exact->traction(x, n);
                     break;
-                  case CurveCondition::Kind::free:
+                  default:
                     break;
                 }
               t *= load_factor;

@@ -57,6 +57,8 @@ namespace bsmpm
     MaterialPointLayout::declare_parameters(prm);
     BoundaryCurves::declare_parameters(prm);
     NeumannLoads::declare_parameters(prm);
+    ImplicitBoundary::declare_parameters(prm);
+    NitscheBoundary::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
@@ -80,6 +82,8 @@ namespace bsmpm
     layout.parse_parameters(prm);
     boundary_curves.parse_parameters(prm);
     neumann_loads.parse_parameters(prm);
+    implicit_boundary.parse_parameters(prm);
+    nitsche_boundary.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
@@ -136,6 +140,11 @@ namespace bsmpm
                          dsp,
                          communicator);
     system_rhs.reinit(grid.locally_owned_dofs(), communicator);
+    if (ImplicitBoundary::prescribes_displacement(boundary_curves))
+      fit_matrix.reinit(grid.locally_owned_dofs(),
+                        grid.locally_owned_dofs(),
+                        dsp,
+                        communicator);
     increment.reinit(grid.locally_owned_dofs(),
                      grid.locally_relevant_dofs(),
                      communicator);
@@ -149,13 +158,22 @@ namespace bsmpm
     TimerOutput::Scope t(timer, "constraints");
     // A DoF none of whose cells holds material is fixed at zero, or K would
     // be singular (method-notes Sec. 1, step 1).
+    // Supports of both components in a cell without material hold its DoFs
+    // too (a roller alone would leave them free to slide).
+    std::vector<bool> supporting(grid.triangulation().n_active_cells(), false);
+    if (!boundary_curves.empty())
+      {
+        implicit_boundary.mark_supporting_cells(boundary_curves, grid, supporting);
+        nitsche_boundary.mark_supporting_cells(boundary_curves, grid, supporting);
+      }
     LinearAlgebra::distributed::Vector<double> support(
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), communicator);
     std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
     n_active_cells = 0;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned() &&
-          cell_moments[cell->active_cell_index()].v > 0)
+          (cell_moments[cell->active_cell_index()].v > 0 ||
+           supporting[cell->active_cell_index()]))
         {
           ++n_active_cells;
           cell->get_dof_indices(dof_indices);
@@ -183,7 +201,25 @@ namespace bsmpm
 
 
   void
-  Scene::assemble_system(const double load_factor)
+  Scene::fit_prescribed_displacement(const double increment_factor)
+  {
+    TimerOutput::Scope t(timer, "prescribed displacement fit");
+    const double       misfit = implicit_boundary.fit_prescribed_displacement(
+      boundary_curves,
+      grid,
+      *kernel,
+      exact_solution.get(),
+      increment_factor,
+      fit_matrix,
+      prescribed);
+    // The fit is linear in u^a: report the misfit of u^a itself.
+    run_summary.quantities["boundary_fit_error"] = misfit / increment_factor;
+  }
+
+
+
+  void
+  Scene::assemble_system(const double load_factor, const double increment_factor)
   {
     timer.enter_subsection("assembly");
     system_matrix = 0;
@@ -196,6 +232,7 @@ namespace bsmpm
                                    Q1CellKernel::dofs_per_cell);
     Vector<double>                       cell_rhs(Q1CellKernel::dofs_per_cell);
     Vector<double>                       internal(Q1CellKernel::dofs_per_cell);
+    Vector<double>                       da(Q1CellKernel::dofs_per_cell);
     std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
@@ -216,6 +253,15 @@ namespace bsmpm
         cell_rhs -= internal;
 
         cell->get_dof_indices(dof_indices);
+        // Material-point part of the force f^d of a prescribed displacement
+        // (eq. 33): the regular stiffness times d^a.
+        if (has_prescribed)
+          {
+            for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+              da[i] = prescribed(dof_indices[i]);
+            cell_matrix.vmult_add(internal = 0, da);
+            cell_rhs -= internal;
+          }
         constraints.distribute_local_to_global(
           cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
       }
@@ -224,6 +270,32 @@ namespace bsmpm
     for (const auto i : unsupported_dofs)
       system_matrix.add(i, i, material.stiffness()[0][0]);
     timer.leave_subsection("assembly");
+    if (boundary_curves.has_supports(
+          BoundaryCurve::DirichletMethod::implicit_boundary))
+      {
+        TimerOutput::Scope t(timer, "implicit boundary");
+        implicit_boundary.assemble(boundary_curves,
+                                   grid,
+                                   *kernel,
+                                   material.stiffness(),
+                                   has_prescribed ? &prescribed : nullptr,
+                                   constraints,
+                                   system_matrix,
+                                   system_rhs);
+      }
+    if (boundary_curves.has_supports(BoundaryCurve::DirichletMethod::nitsche))
+      {
+        TimerOutput::Scope t(timer, "nitsche");
+        nitsche_boundary.assemble(boundary_curves,
+                                  grid,
+                                  *kernel,
+                                  material,
+                                  exact_solution.get(),
+                                  increment_factor,
+                                  constraints,
+                                  system_matrix,
+                                  system_rhs);
+      }
     if (boundary_curves.has_loads())
       {
         TimerOutput::Scope t(timer, "neumann loads");
@@ -263,7 +335,22 @@ namespace bsmpm
   Scene::move_points(const unsigned int step)
   {
     TimerOutput::Scope t(timer, "update points");
-    const auto report = points.move(*kernel, material, increment);
+    const bool ibm = boundary_curves.has_supports(
+      BoundaryCurve::DirichletMethod::implicit_boundary);
+    if (ibm)
+      {
+        band_cells.assign(grid.triangulation().n_active_cells(), false);
+        implicit_boundary.mark_band_cells(boundary_curves, grid, band_cells);
+      }
+    const auto report = points.move(
+      *kernel,
+      material,
+      increment,
+      has_prescribed ? &prescribed : nullptr,
+      ibm ? &band_cells : nullptr,
+      [this](const Point<2> &x, Tensor<1, 2> &w) {
+        return implicit_boundary.support_displacement(boundary_curves, grid, x, w);
+      });
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
@@ -350,6 +437,15 @@ namespace bsmpm
             gauss.push_back({Point<2>(part[i], part[i + 1]),
                              Tensor<1, 2>({part[i + 2], part[i + 3]}),
                              part[i + 4]});
+        local.clear();
+        for (const auto &b : implicit_boundary.band_points())
+          local.insert(local.end(),
+                       {b.position[0], b.position[1], b.d_function, b.weight});
+        std::vector<ImplicitBoundary::BandPoint> band;
+        for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
+          for (std::size_t i = 0; i + 3 < part.size(); i += 4)
+            band.push_back(
+              {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3]});
         output.write_serial_series("curves", "vtp", step, load_factor,
                                    [this](const std::string &file) {
                                      CurveVtkWriter::write_curves(file,
@@ -359,7 +455,8 @@ namespace bsmpm
                                    [&](const std::string &file) {
                                      CurveVtkWriter::write_points(file,
                                                                   boundary_curves,
-                                                                  gauss);
+                                                                  gauss,
+                                                                  band);
                                    });
       }
 
@@ -408,7 +505,11 @@ namespace bsmpm
           points.compute_cell_moments(cell_moments);
         }
         make_constraints();
-        assemble_system(load_factor);
+        has_prescribed =
+          ImplicitBoundary::prescribes_displacement(boundary_curves);
+        if (has_prescribed)
+          fit_prescribed_displacement(1. / n_load_steps);
+        assemble_system(load_factor, 1. / n_load_steps);
         const auto solver_report = solve();
         move_points(step);
         update_curves();

@@ -29,8 +29,13 @@ namespace bsmpm
    * - pressure <p>: p in Pa on the current curve, along the inward normal
    *   (a follower load);
    * - traction <tx>; <ty>: a traction vector in Pa, as expressions of x, y;
-   * - exact traction: sigma(x) n from the scene's exact solution.
-   * Loads are scaled by the load factor of the step.
+   * - exact traction: sigma(x) n from the scene's exact solution;
+   * - fixed: u = 0; roller: u . n = 0 (n the normal of the current curve);
+   * - displacement exact: u = u_exact(x); displacement <ux>; <uy>: u given
+   *   as expressions of x, y.
+   * Loads and prescribed displacements are scaled by the load factor of the
+   * step. Supports are imposed by the curve's Dirichlet method (implicit
+   * boundary method or Nitsche's method).
    */
   struct CurveCondition
   {
@@ -39,14 +44,19 @@ namespace bsmpm
       free,
       pressure,
       traction,
-      exact_traction
+      exact_traction,
+      fixed,
+      roller,
+      displacement
     };
 
     Kind         kind          = Kind::free;
     unsigned int first_segment = 0;
     unsigned int end_segment   = numbers::invalid_unsigned_int;
     double       pressure      = 0;
-    std::shared_ptr<FunctionParser<2>> traction;
+    /** Traction of "traction", or displacement of "displacement <ux>; <uy>"
+     * (nullptr for "displacement exact"). */
+    std::shared_ptr<FunctionParser<2>> function;
 
     /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
     static CurveCondition
@@ -60,7 +70,22 @@ namespace bsmpm
     bool
     is_load() const
     {
-      return kind != Kind::free;
+      return kind == Kind::pressure || kind == Kind::traction ||
+             kind == Kind::exact_traction;
+    }
+
+    bool
+    is_support() const
+    {
+      return kind == Kind::fixed || kind == Kind::roller ||
+             kind == Kind::displacement;
+    }
+
+    /** Whether the support holds both components (not a roller). */
+    bool
+    holds_both_components() const
+    {
+      return kind == Kind::fixed || kind == Kind::displacement;
     }
 
     /** Name of the kind, as in the parameter file. */
@@ -78,7 +103,15 @@ namespace bsmpm
    */
   struct BoundaryCurve
   {
+    /** How the supports of a curve are imposed. */
+    enum class DirichletMethod
+    {
+      implicit_boundary,
+      nitsche
+    };
+
     std::string                        name;
+    DirichletMethod dirichlet_method = DirichletMethod::implicit_boundary;
     bool                               closed = false;
     std::vector<unsigned int>          corners;
     std::vector<CurveCondition>        conditions;
@@ -88,6 +121,8 @@ namespace bsmpm
     std::vector<Point<2>>              positions;
     /** Positions of the points at the start of the run. */
     std::vector<Point<2>>              initial_positions;
+    /** Stresses of the points (Voigt), as of the last load step. */
+    std::vector<Voigt>                 stresses;
     std::unique_ptr<BSplineCurve>      spline;
     std::vector<CurvePiece>            pieces;
 
@@ -164,6 +199,10 @@ namespace bsmpm
     /** Whether any curve carries a load. */
     bool
     has_loads() const;
+
+    /** Whether any curve carries a support imposed by @p method. */
+    bool
+    has_supports(const BoundaryCurve::DirichletMethod method) const;
 
     /** Total number of boundary points. */
     unsigned int

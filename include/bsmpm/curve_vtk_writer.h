@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <bsmpm/boundary_curves.h>
+#include <bsmpm/implicit_boundary.h>
 #include <bsmpm/neumann_loads.h>
 
 #include <string>
@@ -30,12 +31,14 @@ namespace bsmpm
 
     /**
      * Vertices with a "kind" field: 0 boundary point, 1 cut of a curve by a
-     * grid line, 2 Gauss point of a load (with its traction vector).
+     * grid line, 2 Gauss point of a load (with its traction vector), 3
+     * quadrature point of an IBM band (with its D-function value).
      */
     void
     write_points(const std::string &                                 file,
                  const BoundaryCurves &                              curves,
-                 const std::vector<NeumannLoads::QuadraturePoint> &gauss_points);
+                 const std::vector<NeumannLoads::QuadraturePoint> &gauss_points,
+                 const std::vector<ImplicitBoundary::BandPoint> &    band_points);
   } // namespace CurveVtkWriter
 } // namespace bsmpm
 

@@ -38,7 +38,10 @@ namespace bsmpm
       static constexpr unsigned int strain           = 4; ///< xx, yy, xy
       static constexpr unsigned int displacement     = 7; ///< total, x, y
       static constexpr unsigned int initial_position = 9; ///< x, y
-      static constexpr unsigned int n_properties     = 11;
+      /** Value of the IBM D-function at the point in the last step (1 away
+       * from supports). */
+      static constexpr unsigned int d_function   = 11;
+      static constexpr unsigned int n_properties = 12;
     };
 
     /** Result of moving the points by one increment. */
@@ -103,14 +106,28 @@ namespace bsmpm
     compute_cell_moments(std::vector<CellMoments> &moments) const;
 
     /**
+     * Modifies the displacement increment @p w of a point at @p x near a
+     * support and returns the D-function there (see ImplicitBoundary).
+     */
+    using SupportFunction =
+      std::function<double(const Point<2> &x, Tensor<1, 2> &w)>;
+
+    /**
      * Applies the grid increment @p increment (with ghost values) to every
      * point: strain, stress, total displacement and position (paper eqs 5-8).
-     * The points are not re-sorted into cells; see sort_into_cells().
+     * With @p prescribed (nodal values d^a of prescribed displacements, or
+     * nullptr), the increment is u = w + M d^a and the strain B (d + d^a).
+     * In the cells flagged in @p support_cells (by active_cell_index),
+     * @p support modifies w. The points are not re-sorted into cells; see
+     * sort_into_cells().
      */
     MoveReport
     move(const Q1CellKernel &                              kernel,
          const LinearElasticMaterial &                     material,
-         const LinearAlgebra::distributed::Vector<double> &increment);
+         const LinearAlgebra::distributed::Vector<double> &increment,
+         const LinearAlgebra::distributed::Vector<double> *prescribed = nullptr,
+         const std::vector<bool> *                         support_cells = nullptr,
+         const SupportFunction &                           support       = {});
 
     /** Finds the cell and owner of every point after move(). */
     void
@@ -134,10 +151,11 @@ namespace bsmpm
     void
     track(const std::vector<types::particle_index> &ids);
 
-    /** Current positions of the tracked points, in the order given to
-     * track(), on every process. */
-    std::vector<Point<2>>
-    tracked_positions() const;
+    /** Current positions and stresses of the tracked points, in the order
+     * given to track(), on every process. */
+    void
+    tracked_states(std::vector<Point<2>> &positions,
+                   std::vector<Voigt> &   stresses) const;
 
     /** Property names and interpretations for Particles::DataOut. */
     static std::vector<std::string>
@@ -150,9 +168,11 @@ namespace bsmpm
            const double                 volume,
            const types::particle_index  id);
 
-    /** Records the position of @p particle if it is tracked. */
+    /** Records position and stress of a point if it is tracked. */
     void
-    record_if_tracked(const types::particle_index id, const Point<2> &x);
+    record_if_tracked(const types::particle_index  id,
+                      const Point<2> &             x,
+                      const ArrayView<const double> properties);
 
     const BackgroundGrid &        grid;
     Particles::ParticleHandler<2> particles;
@@ -161,8 +181,8 @@ namespace bsmpm
 
     /** Slot of each particle id in the tracked list, or invalid. */
     std::vector<unsigned int> tracked_slot;
-    /** Positions of the locally owned tracked points (slot, position). */
-    std::vector<std::pair<unsigned int, Point<2>>> tracked_local;
+    /** State of the locally owned tracked points: slot, x, y, and stress. */
+    std::vector<std::array<double, 6>> tracked_local;
   };
 } // namespace bsmpm
 

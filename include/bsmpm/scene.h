@@ -14,11 +14,13 @@
 #include <bsmpm/body_region.h>
 #include <bsmpm/boundary_curves.h>
 #include <bsmpm/exact_solution.h>
+#include <bsmpm/implicit_boundary.h>
 #include <bsmpm/linear_solver.h>
 #include <bsmpm/material.h>
 #include <bsmpm/material_point_layout.h>
 #include <bsmpm/material_points.h>
 #include <bsmpm/neumann_loads.h>
+#include <bsmpm/nitsche_boundary.h>
 #include <bsmpm/output_writer.h>
 #include <bsmpm/q1_cell_kernel.h>
 #include <bsmpm/run_summary.h>
@@ -74,7 +76,9 @@ namespace bsmpm
     void
     make_constraints();
     void
-    assemble_system(const double load_factor);
+    fit_prescribed_displacement(const double increment_factor);
+    void
+    assemble_system(const double load_factor, const double increment_factor);
     LinearSolver::Report
     solve();
     void
@@ -103,6 +107,8 @@ namespace bsmpm
     MaterialPoints      points;
     BoundaryCurves      boundary_curves;
     NeumannLoads        neumann_loads;
+    ImplicitBoundary    implicit_boundary;
+    NitscheBoundary     nitsche_boundary;
     LinearSolver        linear_solver;
     OutputWriter        output;
     Verification        verification;
@@ -113,6 +119,12 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix             system_matrix;
     TrilinosWrappers::MPI::Vector              system_rhs;
     LinearAlgebra::distributed::Vector<double> increment;
+    /** Nodal values d^a of the prescribed displacement increment (IBM). */
+    LinearAlgebra::distributed::Vector<double> prescribed;
+    bool                                       has_prescribed = false;
+    TrilinosWrappers::SparseMatrix             fit_matrix;
+    /** Locally owned cells crossed by an IBM support band. */
+    std::vector<bool> band_cells;
     std::vector<CellMoments>                   cell_moments;
     unsigned int                               n_active_cells = 0;
     /** Locally owned DoFs that no cell with material touches. */

@@ -1,0 +1,165 @@
+#ifndef bsmpm_implicit_boundary_h
+#define bsmpm_implicit_boundary_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/background_grid.h>
+#include <bsmpm/boundary_curves.h>
+#include <bsmpm/exact_solution.h>
+#include <bsmpm/q1_cell_kernel.h>
+
+#include <array>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Supports on the B-spline boundary by the implicit boundary method (IBM,
+   * paper Sec. 3.5). Near a supported curve the displacement is
+   *
+   *   u = P(D(phi)) w + u^a,   w = M d,
+   *
+   * with phi the signed distance to the curve (positive inside the body) and
+   * D the D-function of eq. 20, rising from 0 on the curve to 1 at the inner
+   * edge of a band of width delta:
+   * - fixed (and prescribed displacement): P = D I;
+   * - roller: P = I + (D - 1) n n^T, so only the normal component is held
+   *   (method-notes Sec. 5: the boundary-frame form, exact on inclined
+   *   boundaries). The paper's form with the rotation J_T of eq. 26 is
+   *   available as "Roller form = paper".
+   *
+   * The material points integrate the regular stiffness (D = 1 there); the
+   * band adds k2 + k2^T + k3 of eqs. 21-28, integrated per curve piece with
+   * Gauss points along the piece times Gauss points across the band
+   * (paper Fig. 3b). Over the band, int D'^2 = 4 / (3 delta): k3 acts as a
+   * penalty of order E / delta.
+   *
+   * A prescribed displacement enters through nodal values d^a, the global
+   * least-squares fit of u^a along the boundary (eq. 36), and the force
+   * f^d = int Bbar^T C B d^a (eq. 33).
+   */
+  class ImplicitBoundary
+  {
+  public:
+    /** A quadrature point of the band, kept for output. */
+    struct BandPoint
+    {
+      Point<2> position;
+      double   d_function;
+      double   weight;
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** The D-function of eq. 20 and its derivative. */
+    static double
+    d_function(const double phi, const double delta);
+    static double
+    d_function_derivative(const double phi, const double delta);
+
+    /** Band width delta on @p grid. */
+    double
+    band_width(const BackgroundGrid &grid) const
+    {
+      return relative_band_width * grid.min_cell_size();
+    }
+
+    /**
+     * Sets @p cells[c] for every locally owned cell c (active_cell_index)
+     * crossed by an IBM support of both components: such a cell supports
+     * its DoFs even if it holds no material point.
+     */
+    void
+    mark_supporting_cells(const BoundaryCurves &curves,
+                          const BackgroundGrid &grid,
+                          std::vector<bool> &   cells) const;
+
+    /**
+     * Sets @p cells[c] for every locally owned cell crossed by an IBM
+     * support: the cells whose points the support may move.
+     */
+    void
+    mark_band_cells(const BoundaryCurves &curves,
+                    const BackgroundGrid &grid,
+                    std::vector<bool> &   cells) const;
+
+    /**
+     * Adds the band terms k2 + k2^T + k3 of all IBM supports on locally owned
+     * cells to @p matrix, and, if @p prescribed is given (d^a with ghosts),
+     * the band part of -f^d to @p rhs.
+     */
+    void
+    assemble(const BoundaryCurves &                              curves,
+             const BackgroundGrid &                              grid,
+             const Q1CellKernel &                                kernel,
+             const Tensor<2, 3> &                                C,
+             const LinearAlgebra::distributed::Vector<double> *  prescribed,
+             const AffineConstraints<double> &                   constraints,
+             TrilinosWrappers::SparseMatrix &                    matrix,
+             TrilinosWrappers::MPI::Vector &                     rhs);
+
+    /** Whether any IBM support prescribes a displacement. */
+    static bool
+    prescribes_displacement(const BoundaryCurves &curves);
+
+    /**
+     * The least-squares nodal values d^a of eq. 36 for the prescribed
+     * displacement u^a times @p factor, over the pieces of IBM displacement
+     * supports; zero at DoFs whose support does not meet them. @p mass is a
+     * matrix with the system's sparsity pattern, used as work space.
+     * Returns the root mean square of M d^a - u^a along those pieces.
+     */
+    double
+    fit_prescribed_displacement(
+      const BoundaryCurves &                      curves,
+      const BackgroundGrid &                      grid,
+      const Q1CellKernel &                        kernel,
+      const ExactSolution *                       exact,
+      const double                                factor,
+      TrilinosWrappers::SparseMatrix &            mass,
+      LinearAlgebra::distributed::Vector<double> &prescribed) const;
+
+    /**
+     * The displacement increment of a point at @p x (before it moves) whose
+     * grid increment is @p w: P(D) w if @p x lies in the band of an IBM
+     * support, else w. Returns D (1 outside every band).
+     */
+    double
+    support_displacement(const BoundaryCurves &curves,
+                         const BackgroundGrid &grid,
+                         const Point<2> &      x,
+                         Tensor<1, 2> &        w) const;
+
+    const std::vector<BandPoint> &
+    band_points() const
+    {
+      return points;
+    }
+
+  private:
+    /** The value of u^a of @p condition at @p x. */
+    static Tensor<1, 2>
+    prescribed_value(const CurveCondition &condition,
+                     const ExactSolution * exact,
+                     const Point<2> &      x);
+
+    double       relative_band_width = 1e-6;
+    unsigned int points_along        = 2;
+    unsigned int points_across       = 3;
+    bool         paper_roller_form   = false;
+
+    std::vector<BandPoint> points;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,479 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <bsmpm/implicit_boundary.h>
+
+#include <cmath>
+
+namespace bsmpm
+{
+  namespace
+  {
+    /** Voigt strain (engineering shear) of a displacement gradient. */
+    Voigt
+    voigt(const Tensor<2, 2> &gradient)
+    {
+      return Voigt(
+        {gradient[0][0], gradient[1][1], gradient[0][1] + gradient[1][0]});
+    }
+
+    bool
+    is_ibm_support(const BoundaryCurve &curve, const CurveCondition *condition)
+    {
+      return condition != nullptr && condition->is_support() &&
+             curve.dirichlet_method ==
+               BoundaryCurve::DirichletMethod::implicit_boundary;
+    }
+  } // namespace
+
+
+
+  void
+  ImplicitBoundary::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Implicit boundary");
+    prm.declare_entry("Relative band width",
+                      "1e-6",
+                      Patterns::Double(0.),
+                      "Band width delta of the D-function over the cell size "
+                      "h (the paper recommends 1e-6).");
+    prm.declare_entry("Points along piece",
+                      "2",
+                      Patterns::Integer(1),
+                      "Gauss points along each curve piece for the band "
+                      "integrals (paper: 2).");
+    prm.declare_entry("Points across band",
+                      "3",
+                      Patterns::Integer(1),
+                      "Gauss points across the band (paper: 3).");
+    prm.declare_entry("Roller form",
+                      "frame",
+                      Patterns::Selection("frame|paper"),
+                      "frame: the displacement's normal component in the "
+                      "boundary frame carries the D-function (exact on "
+                      "inclined boundaries); paper: the band strain of eqs. "
+                      "22-26 with the rotation J_T.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  ImplicitBoundary::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Implicit boundary");
+    relative_band_width = prm.get_double("Relative band width");
+    points_along        = prm.get_integer("Points along piece");
+    points_across       = prm.get_integer("Points across band");
+    paper_roller_form   = prm.get("Roller form") == "paper";
+    prm.leave_subsection();
+    AssertThrow(relative_band_width > 0 && relative_band_width <= 1,
+                ExcMessage("Implicit boundary: the relative band width must "
+                           "lie in (0, 1], got " +
+                           std::to_string(relative_band_width) + "."));
+  }
+
+
+
+  double
+  ImplicitBoundary::d_function(const double phi, const double delta)
+  {
+    if (phi <= 0)
+      return 0;
+    if (phi >= delta)
+      return 1;
+    const double r = 1 - phi / delta;
+    return 1 - r * r;
+  }
+
+
+
+  double
+  ImplicitBoundary::d_function_derivative(const double phi, const double delta)
+  {
+    if (phi < 0 || phi > delta)
+      return 0;
+    return 2 * (1 - phi / delta) / delta;
+  }
+
+
+
+  void
+  ImplicitBoundary::mark_supporting_cells(const BoundaryCurves &curves,
+                                          const BackgroundGrid &grid,
+                                          std::vector<bool> &   cells) const
+  {
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        {
+          const CurveCondition *condition =
+            curve.condition_of_segment(piece.segment);
+          if (!is_ibm_support(curve, condition) ||
+              !condition->holds_both_components())
+            continue;
+          const auto cell = grid.locally_owned_cell(piece.cell);
+          if (cell != grid.dof_handler().end())
+            cells[cell->active_cell_index()] = true;
+        }
+  }
+
+
+
+  void
+  ImplicitBoundary::mark_band_cells(const BoundaryCurves &curves,
+                                    const BackgroundGrid &grid,
+                                    std::vector<bool> &   cells) const
+  {
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        if (is_ibm_support(curve, curve.condition_of_segment(piece.segment)))
+          {
+            const auto cell = grid.locally_owned_cell(piece.cell);
+            if (cell != grid.dof_handler().end())
+              cells[cell->active_cell_index()] = true;
+          }
+  }
+
+
+
+  void
+  ImplicitBoundary::assemble(
+    const BoundaryCurves &                             curves,
+    const BackgroundGrid &                             grid,
+    const Q1CellKernel &                               kernel,
+    const Tensor<2, 3> &                               C,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const AffineConstraints<double> &                  constraints,
+    TrilinosWrappers::SparseMatrix &                   matrix,
+    TrilinosWrappers::MPI::Vector &                    rhs)
+  {
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    points.clear();
+    const double    delta = band_width(grid);
+    const QGauss<1> along(points_along), across(points_across);
+
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    std::array<Voigt, n>                 B1, B2, CB1, CB2;
+    Q1CellKernel::LocalVector            da;
+
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        {
+          const CurveCondition *condition =
+            curve.condition_of_segment(piece.segment);
+          if (!is_ibm_support(curve, condition))
+            continue;
+          const auto cell = grid.locally_owned_cell(piece.cell);
+          if (cell == grid.dof_handler().end())
+            continue;
+          cell->get_dof_indices(dof_indices);
+          if (prescribed)
+            for (unsigned int i = 0; i < n; ++i)
+              da[i] = (*prescribed)(dof_indices[i]);
+
+          const bool          roller = condition->kind == CurveCondition::Kind::roller;
+          const BSplineCurve &spline = *curve.spline;
+          const double        du     = piece.u_end - piece.u_begin;
+          cell_matrix                = 0;
+          cell_rhs                   = 0;
+
+          for (unsigned int q = 0; q < along.size(); ++q)
+            {
+              const double       u = piece.u_begin + along.point(q)[0] * du;
+              const Point<2>     c = spline.value(u);
+              const Tensor<1, 2> normal = -spline.outward_normal(u); // inward
+              const double       ds = spline.derivative(u).norm() * du *
+                                along.weight(q);
+              const Tensor<2, 2> nn = outer_product(normal, normal);
+
+              for (unsigned int r = 0; r < across.size(); ++r)
+                {
+                  const double   phi = delta * across.point(r)[0];
+                  const double   w   = ds * delta * across.weight(r);
+                  const double   D   = d_function(phi, delta);
+                  const double   dD  = d_function_derivative(phi, delta);
+                  const Point<2> x   = c + phi * normal;
+                  const Point<2> st  = grid.local_coordinates(x, piece.cell);
+                  points.push_back({x, D, w});
+
+                  // u = P(D) w: grad u = P grad w + (dP/dphi) w (x) n.
+                  Tensor<2, 2> P, dP;
+                  if (roller)
+                    {
+                      P  = unit_symmetric_tensor<2>() + (D - 1) * nn;
+                      dP = dD * nn;
+                    }
+                  else
+                    {
+                      P  = D * unit_symmetric_tensor<2>();
+                      dP = dD * unit_symmetric_tensor<2>();
+                    }
+                  Voigt strain_a;
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      const Tensor<1, 2> value = kernel.shape_value(i, st);
+                      B1[i] = voigt(P * kernel.shape_gradient(i, st));
+                      if (roller && paper_roller_form)
+                        // eqs. 23-26: (d D / d x, d D / d y) of the normal
+                        // component, which J_T extracts from w.
+                        B2[i] = dD * (normal * value) *
+                                Voigt({normal[0], 0., normal[1]});
+                      else
+                        B2[i] = voigt(outer_product(dP * value, normal));
+                      CB1[i] = C * B1[i];
+                      CB2[i] = C * B2[i];
+                      if (prescribed)
+                        strain_a += da[i] * kernel.strain_column(i, st);
+                    }
+                  // k2 + k2^T + k3 (eqs. 24, 25).
+                  for (unsigned int i = 0; i < n; ++i)
+                    for (unsigned int j = 0; j < n; ++j)
+                      cell_matrix(i, j) +=
+                        w * (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+                  // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33).
+                  if (prescribed)
+                    {
+                      const Voigt sigma_a = C * strain_a;
+                      for (unsigned int i = 0; i < n; ++i)
+                        cell_rhs[i] -= w * (B1[i] + B2[i]) * sigma_a;
+                    }
+                }
+            }
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, dof_indices, matrix, rhs);
+        }
+  }
+
+
+
+  bool
+  ImplicitBoundary::prescribes_displacement(const BoundaryCurves &curves)
+  {
+    for (const auto &curve : curves.get_curves())
+      if (curve.dirichlet_method ==
+          BoundaryCurve::DirichletMethod::implicit_boundary)
+        for (const auto &condition : curve.conditions)
+          if (condition.kind == CurveCondition::Kind::displacement)
+            return true;
+    return false;
+  }
+
+
+
+  Tensor<1, 2>
+  ImplicitBoundary::prescribed_value(const CurveCondition &condition,
+                                     const ExactSolution * exact,
+                                     const Point<2> &      x)
+  {
+    if (condition.function)
+      return Tensor<1, 2>(
+        {condition.function->value(x, 0), condition.function->value(x, 1)});
+    AssertThrow(exact != nullptr,
+                ExcMessage("Boundary curves: 'displacement exact' needs an "
+                           "exact solution in the 'Exact solution' section."));
+    return exact->displacement(x);
+  }
+
+
+
+  double
+  ImplicitBoundary::fit_prescribed_displacement(
+    const BoundaryCurves &                      curves,
+    const BackgroundGrid &                      grid,
+    const Q1CellKernel &                        kernel,
+    const ExactSolution *                       exact,
+    const double                                factor,
+    TrilinosWrappers::SparseMatrix &            mass,
+    LinearAlgebra::distributed::Vector<double> &prescribed) const
+  {
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    const MPI_Comm         comm = grid.mpi_communicator();
+    const QGauss<1>        gauss(std::max(points_along, 4u));
+
+    // Which DoFs the boundary meets: all others are zero.
+    LinearAlgebra::distributed::Vector<double> touched(
+      grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const auto for_each_piece = [&](const auto &f) {
+      for (const auto &curve : curves.get_curves())
+        for (const auto &piece : curve.pieces)
+          {
+            const CurveCondition *condition =
+              curve.condition_of_segment(piece.segment);
+            if (!is_ibm_support(curve, condition) ||
+                condition->kind != CurveCondition::Kind::displacement)
+              continue;
+            const auto cell = grid.locally_owned_cell(piece.cell);
+            if (cell != grid.dof_handler().end())
+              f(curve, piece, *condition, cell);
+          }
+    };
+    for_each_piece([&](const auto &, const auto &, const auto &, const auto &cell) {
+      cell->get_dof_indices(dof_indices);
+      for (const auto i : dof_indices)
+        touched(i) = 1;
+    });
+    touched.compress(VectorOperation::max);
+    touched.update_ghost_values();
+
+    AffineConstraints<double> constraints(grid.locally_relevant_dofs());
+    for (const auto i : grid.locally_relevant_dofs())
+      if (touched(i) == 0.)
+        constraints.add_line(i);
+    constraints.close();
+
+    // Boundary mass matrix and right-hand side of eq. 36.
+    mass = 0;
+    TrilinosWrappers::MPI::Vector rhs(grid.locally_owned_dofs(), comm);
+    FullMatrix<double>            cell_matrix(n, n);
+    Vector<double>                cell_rhs(n);
+    for_each_piece([&](const BoundaryCurve &curve,
+                       const CurvePiece &   piece,
+                       const CurveCondition &condition,
+                       const auto &         cell) {
+      cell_matrix = 0;
+      cell_rhs    = 0;
+      const double du = piece.u_end - piece.u_begin;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          const double u = piece.u_begin + gauss.point(q)[0] * du;
+          const Point<2> x = curve.spline->value(u);
+          const double   ds = curve.spline->derivative(u).norm() * du * gauss.weight(q);
+          const Point<2> st = grid.local_coordinates(x, piece.cell);
+          const Tensor<1, 2> ua = factor * prescribed_value(condition, exact, x);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const Tensor<1, 2> Ni = kernel.shape_value(i, st);
+              cell_rhs[i] += Ni * ua * ds;
+              for (unsigned int j = 0; j < n; ++j)
+                cell_matrix(i, j) += Ni * kernel.shape_value(j, st) * ds;
+            }
+        }
+      cell->get_dof_indices(dof_indices);
+      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, mass, rhs);
+    });
+    // Rows of DoFs the boundary does not meet: identity.
+    for (const auto i : grid.locally_owned_dofs())
+      if (touched(i) == 0.)
+        mass.add(i, i, 1.);
+    mass.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+
+    TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(), comm);
+    SolverControl                  control(1, 0);
+    TrilinosWrappers::SolverDirect solver(control);
+    solver.solve(mass, solution, rhs);
+    constraints.distribute(solution);
+
+    prescribed.reinit(grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    for (const auto i : grid.locally_owned_dofs())
+      prescribed(i) = solution(i);
+    prescribed.update_ghost_values();
+
+    // Root mean square of the fit along the boundary.
+    double error2 = 0, length = 0;
+    Q1CellKernel::LocalVector da;
+    for_each_piece([&](const BoundaryCurve &curve,
+                       const CurvePiece &   piece,
+                       const CurveCondition &condition,
+                       const auto &         cell) {
+      cell->get_dof_indices(dof_indices);
+      for (unsigned int i = 0; i < n; ++i)
+        da[i] = prescribed(dof_indices[i]);
+      const double du = piece.u_end - piece.u_begin;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          const double u = piece.u_begin + gauss.point(q)[0] * du;
+          const Point<2> x = curve.spline->value(u);
+          const double   ds = curve.spline->derivative(u).norm() * du * gauss.weight(q);
+          const Tensor<1, 2> misfit =
+            kernel.displacement(da, grid.local_coordinates(x, piece.cell)) -
+            factor * prescribed_value(condition, exact, x);
+          error2 += misfit.norm_square() * ds;
+          length += ds;
+        }
+    });
+    error2 = Utilities::MPI::sum(error2, comm);
+    length = Utilities::MPI::sum(length, comm);
+    return length > 0 ? std::sqrt(error2 / length) : 0.;
+  }
+
+
+
+  double
+  ImplicitBoundary::support_displacement(const BoundaryCurves &curves,
+                                         const BackgroundGrid &grid,
+                                         const Point<2> &      x,
+                                         Tensor<1, 2> &        w) const
+  {
+    const double delta = band_width(grid);
+    const auto   ij    = grid.cell_index(x);
+    // The nearest IBM support among the pieces in the point's cell.
+    double                smallest = std::numeric_limits<double>::max();
+    double                phi_min  = 0;
+    Tensor<1, 2>          n_min;
+    const CurveCondition *nearest = nullptr;
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        {
+          if (piece.cell != ij)
+            continue;
+          const CurveCondition *condition =
+            curve.condition_of_segment(piece.segment);
+          if (!is_ibm_support(curve, condition))
+            continue;
+          // Closest point on the piece: samples, then Newton on (C - x).C'.
+          const BSplineCurve &spline = *curve.spline;
+          double              u_best = piece.u_begin, d_best = smallest;
+          const unsigned int  samples = 8;
+          for (unsigned int k = 0; k <= samples; ++k)
+            {
+              const double u =
+                piece.u_begin + (piece.u_end - piece.u_begin) * k / samples;
+              const double d = spline.value(u).distance(x);
+              if (d < d_best)
+                {
+                  d_best = d;
+                  u_best = u;
+                }
+            }
+          double u = u_best;
+          for (unsigned int it = 0; it < 20; ++it)
+            {
+              const Tensor<1, 2> r  = spline.value(u) - x;
+              const Tensor<1, 2> d1 = spline.derivative(u);
+              const double       g  = r * d1;
+              const double       dg = d1 * d1 + r * spline.second_derivative(u);
+              if (dg <= 0)
+                break;
+              const double next =
+                std::min(std::max(u - g / dg, piece.u_begin), piece.u_end);
+              if (std::abs(next - u) < 1e-15)
+                break;
+              u = next;
+            }
+          const double distance = spline.value(u).distance(x);
+          if (distance < smallest)
+            {
+              smallest = distance;
+              n_min    = -spline.outward_normal(u);
+              phi_min  = (x - spline.value(u)) * n_min;
+              nearest  = condition;
+            }
+        }
+    if (nearest == nullptr || phi_min >= delta)
+      return 1.;
+
+    const double D = d_function(phi_min, delta);
+    if (nearest->kind == CurveCondition::Kind::roller)
+      w -= (1 - D) * (w * n_min) * n_min;
+    else
+      w *= D;
+    return D;
+  }
+} // namespace bsmpm
