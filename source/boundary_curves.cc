@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace bsmpm
@@ -278,6 +279,13 @@ namespace bsmpm
                           "displacement) are imposed: by the implicit "
                           "boundary method (paper Sec. 3.5) or by Nitsche's "
                           "method.");
+        prm.declare_entry("Halve point volumes",
+                          "false",
+                          Patterns::Bool(),
+                          "material points: halve the volume of the curve's "
+                          "points, so that the outer layer of points stands "
+                          "for the body up to the curve (a corner point on "
+                          "two such curves keeps a quarter).");
         prm.declare_entry("Trim material points",
                           "false",
                           Patterns::Bool(),
@@ -321,6 +329,7 @@ namespace bsmpm
             for (const auto i : ParameterTools::get_unsigned(prm, "Corners"))
               curve.corners.push_back(i);
             curve.trims_material_points = prm.get_bool("Trim material points");
+            curve.halve_point_volumes   = prm.get_bool("Halve point volumes");
             curve.dirichlet_method =
               prm.get("Dirichlet method") == "nitsche" ?
                 BoundaryCurve::DirichletMethod::nitsche :
@@ -394,37 +403,51 @@ namespace bsmpm
   BoundaryCurves::create_points(MaterialPoints &  points,
                                 const BodyRegion &region)
   {
-    std::vector<types::particle_index> tracked;
+    // A point may belong to two curves (a corner of the outer layer): it is
+    // tracked once.
+    std::vector<types::particle_index>                     tracked;
+    std::map<types::particle_index, unsigned int>          slot_of;
+    std::vector<std::vector<types::particle_index>>        ids(curves.size());
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
         BoundaryCurve &curve  = curves[c];
         Source &       source = sources[c];
-        std::vector<types::particle_index> ids;
         if (source.kind == "material points")
           {
             const auto edge = region.boundary_points(source.edge, 2);
-            ids             = points.outer_layer(edge.points, edge.closed);
+            ids[c]          = points.outer_layer(edge.points, edge.closed);
             curve.closed    = edge.closed;
           }
         else
-          ids = points.add_tracking_points(curve.positions);
+          ids[c] = points.add_tracking_points(curve.positions);
 
         curve.tracked_slots.clear();
-        curve.initial_positions.clear();
-        for (const auto id : ids)
+        for (const auto id : ids[c])
           {
-            curve.tracked_slots.push_back(tracked.size());
-            tracked.push_back(id);
+            const auto [it, inserted] = slot_of.emplace(id, tracked.size());
+            if (inserted)
+              tracked.push_back(id);
+            curve.tracked_slots.push_back(it->second);
           }
       }
     points.track(tracked);
+
+    // The outer layer stands for the body up to its boundary: its points
+    // keep half their volume on a side, a quarter at a corner (paper
+    // Sec. 4.1.2).
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      if (curves[c].halve_point_volumes)
+        points.scale_volumes(ids[c], 0.5);
 
     std::vector<Point<2>> positions;
     std::vector<Voigt>    stresses;
     points.tracked_states(positions, stresses);
     for (auto &curve : curves)
-      for (const unsigned int slot : curve.tracked_slots)
-        curve.initial_positions.push_back(positions[slot]);
+      {
+        curve.initial_positions.clear();
+        for (const unsigned int slot : curve.tracked_slots)
+          curve.initial_positions.push_back(positions[slot]);
+      }
   }
 
 

@@ -11,10 +11,12 @@ namespace bsmpm
     prm.enter_subsection("Material points");
     prm.declare_entry("Layout",
                       "per cell",
-                      Patterns::Selection("per cell|lattice|polar"),
+                      Patterns::Selection("per cell|lattice|polar|cell centroid"),
                       "per cell: n x n points in every grid cell; lattice: "
                       "nx x ny points over a rectangle; polar: n_r x n_theta "
-                      "points over an annulus-sector body.");
+                      "points over an annulus-sector body; cell centroid: one "
+                      "point per cell at the centroid of the cell's part "
+                      "inside a (rotated) rectangle, with that part's area.");
     prm.declare_entry("Points per cell",
                       "2",
                       Patterns::Integer(1),
@@ -48,8 +50,11 @@ namespace bsmpm
   {
     prm.enter_subsection("Material points");
     const std::string kind = prm.get("Layout");
-    layout = kind == "per cell" ? Kind::per_cell :
-                                  (kind == "lattice" ? Kind::lattice : Kind::polar);
+    layout = kind == "per cell" ?
+               Kind::per_cell :
+               (kind == "lattice" ?
+                  Kind::lattice :
+                  (kind == "polar" ? Kind::polar : Kind::cell_centroid));
     points_per_cell         = prm.get_integer("Points per cell");
     const auto lattice      = ParameterTools::get_unsigned(prm, "Lattice points");
     lattice_points          = {{lattice[0], lattice[1]}};
@@ -122,6 +127,63 @@ namespace bsmpm
                                    lower[1] + (j + 0.5) * dy);
                   if (region.contains(p))
                     f(p, dx * dy);
+                }
+            break;
+          }
+
+        case Kind::cell_centroid:
+          {
+            AssertThrow(region.shape() == BodyRegion::Shape::rectangle ||
+                          region.shape() ==
+                            BodyRegion::Shape::rotated_rectangle,
+                        ExcMessage("Material points: the cell centroid "
+                                   "layout needs a (rotated) rectangular "
+                                   "body region."));
+            const auto corners = region.corners();
+            for (unsigned int j = 0; j < grid.n_cells(1); ++j)
+              for (unsigned int i = 0; i < grid.n_cells(0); ++i)
+                {
+                  // Clip the cell by each side of the convex body
+                  // (Sutherland-Hodgman), then take area and centroid.
+                  const Point<2> o = grid.cell_origin({{i, j}});
+                  const Tensor<1, 2> &h = grid.cell_size();
+                  std::vector<Point<2>> polygon = {o,
+                                                   o + Tensor<1, 2>({h[0], 0}),
+                                                   o + h,
+                                                   o + Tensor<1, 2>({0, h[1]})};
+                  for (unsigned int k = 0; k < 4 && !polygon.empty(); ++k)
+                    {
+                      const Point<2> a = corners[k], b = corners[(k + 1) % 4];
+                      const auto side = [&](const Point<2> &p) {
+                        return cross_product_2d(b - a)  * (p - a);
+                      };
+                      std::vector<Point<2>> clipped;
+                      for (unsigned int m = 0; m < polygon.size(); ++m)
+                        {
+                          const Point<2> &p = polygon[m];
+                          const Point<2> &q = polygon[(m + 1) % polygon.size()];
+                          // Inside: to the left of a -> b, i.e. side <= 0 for
+                          // the clockwise-turned edge normal.
+                          const double sp = -side(p), sq = -side(q);
+                          if (sp >= 0)
+                            clipped.push_back(p);
+                          if ((sp >= 0) != (sq >= 0))
+                            clipped.push_back(p + sp / (sp - sq) * (q - p));
+                        }
+                      polygon = clipped;
+                    }
+                  double   area = 0;
+                  Point<2> centroid;
+                  for (unsigned int m = 0; m < polygon.size(); ++m)
+                    {
+                      const Point<2> &p = polygon[m];
+                      const Point<2> &q = polygon[(m + 1) % polygon.size()];
+                      const double    a = p[0] * q[1] - q[0] * p[1];
+                      area += a / 2;
+                      centroid += a / 6 * (p + q);
+                    }
+                  if (area > 1e-12 * h[0] * h[1])
+                    f(centroid / area, area);
                 }
             break;
           }

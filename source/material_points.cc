@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace bsmpm
@@ -302,6 +303,24 @@ namespace bsmpm
     if (closed && layer.size() > 1 && layer.front() == layer.back())
       layer.pop_back();
     return layer;
+  }
+
+
+
+  void
+  MaterialPoints::scale_volumes(const std::vector<types::particle_index> &ids,
+                                const double                              factor)
+  {
+    std::map<types::particle_index, unsigned int> count;
+    for (const auto id : ids)
+      ++count[id];
+    for (auto &particle : particles)
+      {
+        const auto it = count.find(particle.get_id());
+        if (it != count.end())
+          particle.get_properties()[Property::volume] *=
+            std::pow(factor, it->second);
+      }
   }
 
 

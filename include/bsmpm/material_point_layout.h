@@ -24,6 +24,11 @@ namespace bsmpm
    * - polar: n_r x n_theta points at the centres (mid radius, mid angle) of
    *   the polar sub-cells of an annulus-sector body, each with its sub-cell's
    *   exact area.
+   * - cell centroid: one point per cell at the centroid of the part of the
+   *   cell inside a (rotated) rectangular body, with that part's area: the
+   *   points then integrate functions linear in each cell exactly, so a
+   *   constant-stress state is in equilibrium to round-off even in partly
+   *   filled cells.
    *
    * Points come in a fixed global order, the same on every process, so their
    * index is a partition-independent particle id.
@@ -35,7 +40,8 @@ namespace bsmpm
     {
       per_cell,
       lattice,
-      polar
+      polar,
+      cell_centroid
     };
 
     static void

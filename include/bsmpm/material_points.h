@@ -143,6 +143,13 @@ namespace bsmpm
     std::vector<types::particle_index>
     outer_layer(const std::vector<Point<2>> &corners, const bool closed) const;
 
+    /** Multiplies the volume of the points with ids @p ids by @p factor
+     * (the same list on every process); a repeated id is scaled once per
+     * occurrence. */
+    void
+    scale_volumes(const std::vector<types::particle_index> &ids,
+                  const double                              factor);
+
     /**
      * Marks the points with ids @p ids (the same list on every process) as
      * tracked: their current positions are available, in this order, from
