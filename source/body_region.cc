@@ -110,9 +110,9 @@ namespace bsmpm
                                  "corner."));
           if (region_shape == Shape::rectangle_minus_disc)
             for (unsigned int d = 0; d < 2; ++d)
-              AssertThrow(disc_center[d] == lower_left[d] ||
-                            disc_center[d] == upper_right[d] ||
-                            (disc_center[d] - disc_radius >= lower_left[d] &&
+              AssertThrow((disc_center[d] == lower_left[d] ||
+                           disc_center[d] - disc_radius >= lower_left[d]) &&
+                            (disc_center[d] == upper_right[d] ||
                              disc_center[d] + disc_radius <= upper_right[d]),
                           ExcMessage("Body region: the disc must lie inside "
                                      "the rectangle or be centred on its "

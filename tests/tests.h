@@ -12,6 +12,8 @@
 #include <iomanip>
 #include <string>
 
+using namespace dealii;
+
 std::ofstream deallogfile;
 
 inline void

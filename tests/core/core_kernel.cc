@@ -27,9 +27,11 @@
 #include <cstdint>
 #include <vector>
 
+// tests.h uses deallog unqualified: the using directive must come first.
+using namespace dealii;
+
 #include "../tests.h"
 
-using namespace dealii;
 using namespace bsmpm;
 
 namespace
@@ -72,7 +74,8 @@ namespace
   {
     deallog.push("material");
     const double E = 2.5e7, nu = 0.3;
-    // Lame constants; plane stress replaces lambda by 2 lambda mu/(lambda+2 mu).
+    // Lame constants; plane stress replaces lambda by 2 lambda mu/(lambda+2
+    // mu).
     const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
     const double mu     = E / (2 * (1 + nu));
 
@@ -80,7 +83,7 @@ namespace
                              LinearElasticMaterial::Model::plane_stress})
       {
         const LinearElasticMaterial material(E, nu, model, 2000.);
-        const bool   strain = model == LinearElasticMaterial::Model::plane_strain;
+        const bool strain = model == LinearElasticMaterial::Model::plane_strain;
         const double l = strain ? lambda : 2 * lambda * mu / (lambda + 2 * mu);
 
         // Textbook forms, written differently from the library's.
@@ -121,25 +124,24 @@ namespace
                 << std::endl;
         deallog << model_name(model)
                 << ": sigma = C eps for uniaxial stress gives eps_yy/eps_xx = "
-                << [&]() {
-                     // Uniaxial stress in x: eps = C^-1 (1, 0, 0).
-                     const Tensor<1, 3> eps =
-                       invert(C) * Tensor<1, 3>({1., 0., 0.});
-                     return eps[1] / eps[0];
-                   }()
-                << " (-nu in plane stress, -nu/(1-nu) in plane strain)"
+                <<
+          [&]() {
+            // Uniaxial stress in x: eps = C^-1 (1, 0, 0).
+            const Tensor<1, 3> eps = invert(C) * Tensor<1, 3>({1., 0., 0.});
+            return eps[1] / eps[0];
+          }() << " (-nu in plane stress, -nu/(1-nu) in plane strain)"
                 << std::endl;
       }
 
     // Invalid input.
-    const std::vector<std::pair<double, double>> invalid = {
-      {0., 0.3},
-      {-1e6, 0.3},
-      {std::nan(""), 0.3},
-      {1e6, 0.5},
-      {1e6, -1.},
-      {1e6, 0.7},
-      {1e6, std::nan("")}};
+    const std::vector<std::pair<double, double>> invalid = {{0., 0.3},
+                                                            {-1e6, 0.3},
+                                                            {std::nan(""), 0.3},
+                                                            {1e6, 0.5},
+                                                            {1e6, -1.},
+                                                            {1e6, 0.7},
+                                                            {1e6,
+                                                             std::nan("")}};
     // NaN is printed as text: numdiff would not compare it as equal.
     const auto text = [](const double x) {
       return std::isnan(x) ? std::string("not-a-number") : std::to_string(x);
@@ -215,13 +217,13 @@ namespace
     std::unique_ptr<FEValues<2>>
     values_at(const std::vector<Point<2>> &st) const
     {
-      const Quadrature<2> quadrature(st,
-                                     std::vector<double>(st.size(), 1.));
-      auto fe_values = std::make_unique<FEValues<2>>(
-        mapping,
-        fe,
-        quadrature,
-        update_values | update_gradients | update_quadrature_points);
+      const Quadrature<2> quadrature(st, std::vector<double>(st.size(), 1.));
+      auto                fe_values =
+        std::make_unique<FEValues<2>>(mapping,
+                                      fe,
+                                      quadrature,
+                                      update_values | update_gradients |
+                                        update_quadrature_points);
       fe_values->reinit(dof_handler.begin_active());
       return fe_values;
     }
@@ -250,10 +252,10 @@ namespace
   check_shape_functions()
   {
     deallog.push("shape");
-    Random             random;
-    const Point<2>     origin(1.3, -0.4);
-    const Tensor<1, 2> h({0.7, 0.3});
-    Reference          reference(origin, h);
+    Random                      random;
+    const Point<2>              origin(1.3, -0.4);
+    const Tensor<1, 2>          h({0.7, 0.3});
+    Reference                   reference(origin, h);
     const LinearElasticMaterial material(
       1e6, 0.25, LinearElasticMaterial::Model::plane_strain);
     const Q1CellKernel kernel(reference.fe, h, material.stiffness());
@@ -270,11 +272,11 @@ namespace
     // The quadrature points are where the kernel's local coordinates say.
     double position_error = 0;
     for (unsigned int q = 0; q < st.size(); ++q)
-      position_error = std::max(
-        position_error,
-        (fe_values->quadrature_point(q) -
-         (origin + Tensor<1, 2>({st[q][0] * h[0], st[q][1] * h[1]})))
-          .norm());
+      position_error =
+        std::max(position_error,
+                 (fe_values->quadrature_point(q) -
+                  (origin + Tensor<1, 2>({st[q][0] * h[0], st[q][1] * h[1]})))
+                   .norm());
     deallog << "points map to x0 + (s hx, t hy): "
             << yes_no(position_error < 1e-15) << std::endl;
 
@@ -295,24 +297,21 @@ namespace
                   std::max(value_error,
                            std::abs(value[c] -
                                     fe_values->shape_value_component(i, q, c)));
-                grad_error = std::max(
-                  grad_error,
-                  (gradient[c] - fe_values->shape_grad_component(i, q, c))
-                      .norm() /
-                    grad_scale);
+                grad_error = std::max(grad_error,
+                                      (gradient[c] -
+                                       fe_values->shape_grad_component(i, q, c))
+                                          .norm() /
+                                        grad_scale);
               }
-            column_error =
-              std::max(column_error,
-                       (kernel.strain_column(i, st[q]) -
-                        strain_column(*fe_values, i, q))
-                           .norm() /
-                         grad_scale);
-            vertex_error = std::max(
-              vertex_error,
-              std::abs(N[kernel.vertex(i)] -
-                       fe_values->shape_value_component(i,
-                                                        q,
-                                                        kernel.component(i))));
+            column_error = std::max(column_error,
+                                    (kernel.strain_column(i, st[q]) -
+                                     strain_column(*fe_values, i, q))
+                                        .norm() /
+                                      grad_scale);
+            vertex_error = std::max(vertex_error,
+                                    std::abs(N[kernel.vertex(i)] -
+                                             fe_values->shape_value_component(
+                                               i, q, kernel.component(i))));
           }
       }
     deallog << st.size()
@@ -356,12 +355,12 @@ namespace
   {
     deallog.push(std::string(model_name(model)) + ", " +
                  std::to_string(n_points) + " points");
-    Random             random;
-    const Point<2>     origin(-2.1, 0.6);
-    const Tensor<1, 2> h({0.7, 0.3});
-    Reference          reference(origin, h);
+    Random                      random;
+    const Point<2>              origin(-2.1, 0.6);
+    const Tensor<1, 2>          h({0.7, 0.3});
+    Reference                   reference(origin, h);
     const LinearElasticMaterial material(3e7, 0.2, model);
-    const Tensor<2, 3> &        C = material.stiffness();
+    const Tensor<2, 3>         &C = material.stiffness();
     const Q1CellKernel          kernel(reference.fe, h, C);
     constexpr unsigned int      n_dofs = Q1CellKernel::dofs_per_cell;
 
@@ -372,7 +371,8 @@ namespace
       {
         st[q]     = Point<2>(random(), random());
         volume[q] = h[0] * h[1] / n_points * random(0.2, 1.8);
-        sigma[q]  = Voigt({random(-1e5, 1e5), random(-1e5, 1e5), random(-1e5, 1e5)});
+        sigma[q] =
+          Voigt({random(-1e5, 1e5), random(-1e5, 1e5), random(-1e5, 1e5)});
       }
     const Tensor<1, 2> body_force({random(-2e4, 2e4), random(-2e4, 2e4)});
     const auto         fe_values = reference.values_at(st);
@@ -426,8 +426,8 @@ namespace
             u(i) = mode < 2 ? double(c == mode) : (c == 0 ? -x[1] : x[0]);
           }
         K.vmult(Ku, u);
-        rigid_residual =
-          std::max(rigid_residual, max_abs(Ku) / (max_abs(K) * u.linfty_norm()));
+        rigid_residual = std::max(rigid_residual,
+                                  max_abs(Ku) / (max_abs(K) * u.linfty_norm()));
       }
     deallog << "rigid motions in the kernel of K (to 1e-14): "
             << yes_no(rigid_residual < 1e-14) << std::endl;
@@ -436,8 +436,8 @@ namespace
     FullMatrix<double> K2(K);
     kernel.add_stiffness(moments, K2);
     K2.add(-2., K);
-    deallog << "add_stiffness adds: " << yes_no(max_abs(K2) < 1e-15 * max_abs(K))
-            << std::endl;
+    deallog << "add_stiffness adds: "
+            << yes_no(max_abs(K2) < 1e-15 * max_abs(K)) << std::endl;
 
     Vector<double> df(f_int);
     df -= f_int_ref;
@@ -451,12 +451,11 @@ namespace
     for (unsigned int i = 0; i < n_dofs; ++i)
       total_body_force[kernel.component(i)] += f_body(i);
     deallog << "body force sums to b * sum V: "
-            << yes_no(std::abs(total_body_force[0] -
-                               body_force[0] * moments.v) <
-                          1e-12 * body_force.norm() * moments.v &&
-                        std::abs(total_body_force[1] -
-                                 body_force[1] * moments.v) <
-                          1e-12 * body_force.norm() * moments.v)
+            << yes_no(
+                 std::abs(total_body_force[0] - body_force[0] * moments.v) <
+                   1e-12 * body_force.norm() * moments.v &&
+                 std::abs(total_body_force[1] - body_force[1] * moments.v) <
+                   1e-12 * body_force.norm() * moments.v)
             << std::endl;
 
     // Strain and displacement of random local displacements.
@@ -498,15 +497,17 @@ namespace
   check_single_points()
   {
     deallog.push("single points");
-    const Tensor<1, 2> h({0.7, 0.3});
-    Reference          reference(Point<2>(), h);
+    const Tensor<1, 2>          h({0.7, 0.3});
+    Reference                   reference(Point<2>(), h);
     const LinearElasticMaterial material(
       1., 0.3, LinearElasticMaterial::Model::plane_stress);
-    const Q1CellKernel kernel(reference.fe, h, material.stiffness());
-    const std::vector<Point<2>> corners = {
-      Point<2>(0, 0), Point<2>(1, 0), Point<2>(0, 1), Point<2>(1, 1)};
-    const auto fe_values = reference.values_at(corners);
-    bool       all_equal = true;
+    const Q1CellKernel          kernel(reference.fe, h, material.stiffness());
+    const std::vector<Point<2>> corners   = {Point<2>(0, 0),
+                                             Point<2>(1, 0),
+                                             Point<2>(0, 1),
+                                             Point<2>(1, 1)};
+    const auto                  fe_values = reference.values_at(corners);
+    bool                        all_equal = true;
     for (unsigned int q = 0; q < corners.size(); ++q)
       {
         CellMoments m;
@@ -515,9 +516,9 @@ namespace
         kernel.add_stiffness(m, K);
         for (unsigned int i = 0; i < 8; ++i)
           for (unsigned int j = 0; j < 8; ++j)
-            K_ref(i, j) = 0.5 * strain_column(*fe_values, i, q) *
-                          (material.stiffness() *
-                           strain_column(*fe_values, j, q));
+            K_ref(i, j) =
+              0.5 * strain_column(*fe_values, i, q) *
+              (material.stiffness() * strain_column(*fe_values, j, q));
         K.add(-1., K_ref);
         all_equal = all_equal && max_abs(K) < 1e-13 * max_abs(K_ref);
       }
