@@ -2,8 +2,8 @@
 """Runs a bsmpm scene over a refinement series and reports errors and rates.
 
 Each run overrides one parameter (e.g. the cell size) with --set and reads the
-run's summary.json. Rates are log(e_{k-1}/e_k) / log(x_{k-1}/x_k) for the
-refined parameter x. With --min-rate NAME=RATE the script fails unless the
+run's summary.json. Rates are log(e_{k-1}/e_k) / |log(x_{k-1}/x_k)| for the
+refined parameter x: positive when the error falls. With --min-rate NAME=RATE the script fails unless the
 rate between the last two runs of error NAME is at least RATE, which makes it
 a test. With --csv it writes one row per run.
 
@@ -23,10 +23,12 @@ import sys
 import tempfile
 
 
-def run(args, value, directory):
+def run(args, value, directory, index):
     command = []
     if args.mpirun > 1:
-        command += ["mpirun", "-np", str(args.mpirun)]
+        command += ["mpirun", "--oversubscribe", "-np", str(args.mpirun)]
+        if os.geteuid() == 0:
+            command.insert(1, "--allow-run-as-root")
     command += [args.bsmpm, args.prm,
                 "--set", f"{args.parameter}={value}",
                 "--set", f"Output/Directory={directory}",
@@ -34,6 +36,9 @@ def run(args, value, directory):
                 "--set", "Output/Timing summary=false"]
     for s in args.set:
         command += ["--set", s]
+    for vary in args.vary:
+        name, values = vary.split("=", 1)
+        command += ["--set", f"{name}={values.split(';')[index]}"]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.stderr.write(result.stdout + result.stderr)
@@ -55,6 +60,9 @@ def main():
                         help="comma-separated error or quantity names to report")
     parser.add_argument("--set", action="append", default=[],
                         help="further overrides, as for bsmpm --set")
+    parser.add_argument("--vary", action="append", default=[],
+                        help="Section/Name=v1;v2;...: a parameter that changes "
+                             "along with the refined one (one value per run)")
     parser.add_argument("--min-rate", action="append", default=[],
                         help="NAME=RATE: require this rate between the last two runs")
     parser.add_argument("--csv", help="write a CSV with one row per run")
@@ -66,7 +74,7 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for i, value in enumerate(values):
-            summary = run(args, value, os.path.join(tmp, f"run{i}"))
+            summary = run(args, value, os.path.join(tmp, f"run{i}"), i)
             results = dict(summary["errors"])
             results.update(summary["quantities"])
             rows.append({"value": float(value),
@@ -85,8 +93,10 @@ def main():
         for n in names:
             rate = float("nan")
             if i > 0 and row[n] > 0 and rows[i - 1][n] > 0:
+                # Positive when the error falls, whichever way the
+                # parameter runs (cell size down, points per cell up).
                 rate = (math.log(rows[i - 1][n] / row[n]) /
-                        math.log(rows[i - 1]["value"] / row["value"]))
+                        abs(math.log(rows[i - 1]["value"] / row["value"])))
             rates[n].append(rate)
             line += f" {row[n]:>14.6e} {rate:>6.2f}"
         print(line)
