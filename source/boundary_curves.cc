@@ -399,7 +399,7 @@ namespace bsmpm
 
 
 
-  void
+  std::vector<types::particle_index>
   BoundaryCurves::create_points(MaterialPoints &  points,
                                 const BodyRegion &region)
   {
@@ -430,15 +430,20 @@ namespace bsmpm
             curve.tracked_slots.push_back(it->second);
           }
       }
-    points.track(tracked);
-
     // The outer layer stands for the body up to its boundary: its points
     // keep half their volume on a side, a quarter at a corner (paper
     // Sec. 4.1.2).
     for (unsigned int c = 0; c < curves.size(); ++c)
       if (curves[c].halve_point_volumes)
         points.scale_volumes(ids[c], 0.5);
+    return tracked;
+  }
 
+
+
+  void
+  BoundaryCurves::read_initial_positions(const MaterialPoints &points)
+  {
     std::vector<Point<2>> positions;
     std::vector<Voigt>    stresses;
     points.tracked_states(positions, stresses);

@@ -51,6 +51,17 @@ namespace bsmpm
                       "load steps like every other load.");
     prm.leave_subsection();
 
+    prm.enter_subsection("Probe");
+    prm.declare_entry("Point",
+                      "",
+                      Patterns::Anything(),
+                      "Initial position of a zero-volume point that moves "
+                      "with the body and whose displacement is reported as "
+                      "quantities <name>_displacement_x, _y and "
+                      "<name>_deflection (= -displacement_y); empty: none.");
+    prm.declare_entry("Name", "probe", Patterns::Anything(), "Name of the probe.");
+    prm.leave_subsection();
+
     BackgroundGrid::declare_parameters(prm);
     LinearElasticMaterial::declare_parameters(prm);
     BodyRegion::declare_parameters(prm);
@@ -74,6 +85,13 @@ namespace bsmpm
     prm.enter_subsection("Loading");
     n_load_steps = prm.get_integer("Load steps");
     gravity      = ParameterTools::get_point(prm, "Gravity");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Probe");
+    has_probe = !Utilities::trim(prm.get("Point")).empty();
+    if (has_probe)
+      probe_position = ParameterTools::get_point(prm, "Point");
+    probe_name = prm.get("Name");
     prm.leave_subsection();
 
     grid.parse_parameters(prm);
@@ -105,8 +123,19 @@ namespace bsmpm
     points.generate(layout, region, [this](const Point<2> &p) {
       return boundary_curves.trims(p);
     });
+    std::vector<types::particle_index> tracked;
     if (!boundary_curves.empty())
-      boundary_curves.create_points(points, region);
+      tracked = boundary_curves.create_points(points, region);
+    if (has_probe)
+      {
+        probe_slot = tracked.size();
+        tracked.push_back(points.add_tracking_points({probe_position})[0]);
+      }
+    if (!tracked.empty())
+      {
+        points.track(tracked);
+        boundary_curves.read_initial_positions(points);
+      }
     kernel = std::make_unique<Q1CellKernel>(grid.fe(),
                                             grid.cell_size(),
                                             material.stiffness());
@@ -513,6 +542,16 @@ namespace bsmpm
         const auto solver_report = solve();
         move_points(step);
         update_curves();
+        if (has_probe)
+          {
+            std::vector<Point<2>> positions;
+            std::vector<Voigt>    stresses;
+            points.tracked_states(positions, stresses);
+            const Tensor<1, 2> u = positions[probe_slot] - probe_position;
+            run_summary.quantities[probe_name + "_displacement_x"] = u[0];
+            run_summary.quantities[probe_name + "_displacement_y"] = u[1];
+            run_summary.quantities[probe_name + "_deflection"]     = -u[1];
+          }
         if (boundary_curves.has_loads())
           {
             const Tensor<1, 2> force = neumann_loads.resultant(communicator);

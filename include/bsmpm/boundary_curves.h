@@ -181,10 +181,16 @@ namespace bsmpm
 
     /**
      * Inserts the tracking points of the curves, or finds the material
-     * points that form them, and starts tracking them.
+     * points that form them. Returns the ids to track, without repetitions:
+     * MaterialPoints::track() must be given them (possibly followed by
+     * others), then read_initial_positions() called.
      */
-    void
+    std::vector<types::particle_index>
     create_points(MaterialPoints &points, const BodyRegion &region);
+
+    /** Reads the starting positions of the curves' points. */
+    void
+    read_initial_positions(const MaterialPoints &points);
 
     /** Rebuilds the splines from the current point positions and cuts them
      * by @p grid. */

@@ -130,6 +130,12 @@ namespace bsmpm
     /** Locally owned DoFs that no cell with material touches. */
     std::vector<types::global_dof_index> unsupported_dofs;
 
+    /** An optional zero-volume point whose displacement is reported. */
+    std::string probe_name;
+    Point<2>    probe_position;
+    bool        has_probe  = false;
+    unsigned int probe_slot = 0;
+
     RunSummary run_summary;
   };
 } // namespace bsmpm
