@@ -25,6 +25,7 @@ namespace bsmpm
     double volume = 0, u_err2 = 0, u_norm2 = 0, s_err2 = 0, s_norm2 = 0;
 
     Vector<double> a(5);
+    std::array<Point<2>, 2> worst; // where max_A_u, max_A_v occur
     for (const auto &particle : points.particle_handler())
       {
         const auto   props = particle.get_properties();
@@ -46,6 +47,9 @@ namespace bsmpm
             abs_sum[c] += V * e;
             if (a[c] != 0.)
               rel_sum[c] += V * e / std::abs(a[c]);
+            if (c < 2 && e > max_abs[c])
+              worst[c] = Point<2>(props[P::initial_position],
+                                  props[P::initial_position + 1]);
             max_abs[c]   = std::max(max_abs[c], e);
             max_exact[c] = std::max(max_exact[c], std::abs(a[c]));
             min_exact[c] = std::min(min_exact[c], std::abs(a[c]));
@@ -57,6 +61,12 @@ namespace bsmpm
         s_norm2 += V * (a[2] * a[2] + a[3] * a[3] + 2 * a[4] * a[4]);
       }
 
+    // The worst points' places, from the process that holds each.
+    for (unsigned int c = 0; c < 2; ++c)
+      {
+        const auto stats = Utilities::MPI::min_max_avg(max_abs[c], communicator);
+        worst[c] = Utilities::MPI::broadcast(communicator, worst[c], stats.max_index);
+      }
     Utilities::MPI::sum(abs_sum, communicator, abs_sum);
     Utilities::MPI::sum(rel_sum, communicator, rel_sum);
     Utilities::MPI::max(max_abs, communicator, max_abs);
@@ -78,6 +88,10 @@ namespace bsmpm
       }
     errors["max_A_u"]  = max_abs[0];
     errors["max_A_v"]  = max_abs[1];
+    errors["max_A_u_at_x"] = worst[0][0];
+    errors["max_A_u_at_y"] = worst[0][1];
+    errors["max_A_v_at_x"] = worst[1][0];
+    errors["max_A_v_at_y"] = worst[1][1];
     errors["L2_u"]     = u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2 / volume);
     errors["L2_sigma"] = s_norm2 > 0 ? std::sqrt(s_err2 / s_norm2) : std::sqrt(s_err2 / volume);
     return errors;

@@ -5,6 +5,8 @@
 #include <bsmpm/scene.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -95,6 +97,72 @@ namespace
     return text;
   }
 
+  /**
+   * A parameter file with its "include" lines replaced by the files they
+   * name, each resolved against the folder of the file that includes it
+   * (deal.II would resolve them against the working directory). Remembers
+   * where every line came from, to name it in error messages.
+   */
+  struct ParameterText
+  {
+    std::string                                      text;
+    std::vector<std::pair<std::string, unsigned int>> origin;
+
+    void
+    expand(const std::filesystem::path &file, const unsigned int depth = 0)
+    {
+      if (depth > 16)
+        throw std::runtime_error("'" + file.string() +
+                                 "': includes nest too deep (a cycle?).");
+      std::ifstream in(file);
+      if (!in)
+        throw std::runtime_error("cannot read the parameter file '" +
+                                 file.string() + "'.");
+      std::string  line;
+      unsigned int number = 0;
+      while (std::getline(in, line))
+        {
+          ++number;
+          const auto first = line.find_first_not_of(" \t");
+          if (first != std::string::npos &&
+              line.compare(first, 8, "include ") == 0)
+            {
+              std::string name = line.substr(first + 8);
+              name.erase(name.find_last_not_of(" \t\r") + 1);
+              name.erase(0, name.find_first_not_of(" \t"));
+              std::filesystem::path included(name);
+              if (included.is_relative())
+                included = file.parent_path() / included;
+              expand(included, depth + 1);
+              continue;
+            }
+          text += line + "\n";
+          origin.emplace_back(file.string(), number);
+        }
+    }
+
+    /** Replaces "Line <n> of file <<input>>" by the true file and line. */
+    std::string
+    locate(const std::string &message) const
+    {
+      const std::string key = "Line <";
+      const auto        start = message.find(key);
+      if (start == std::string::npos)
+        return message;
+      const auto   end = message.find("> of file <<input>>", start);
+      if (end == std::string::npos)
+        return message;
+      const unsigned int n =
+        std::stoul(message.substr(start + key.size(), end - start - key.size()));
+      if (n == 0 || n > origin.size())
+        return message;
+      return message.substr(0, start) + "line " +
+             std::to_string(origin[n - 1].second) + " of '" +
+             origin[n - 1].first + "'" +
+             message.substr(end + std::string("> of file <<input>>").size());
+    }
+  };
+
   /** The message of a deal.II exception without its source location. */
   std::string
   message_of(const dealii::ExceptionBase &e)
@@ -150,7 +218,17 @@ main(int argc, char **argv)
         throw std::runtime_error("cannot read the parameter file '" +
                                  line.parameter_file + "'.");
 
-      prm.parse_input(line.parameter_file);
+      ParameterText text;
+      text.expand(std::filesystem::absolute(line.parameter_file));
+      try
+        {
+          std::istringstream input(text.text);
+          prm.parse_input(input, "<input>");
+        }
+      catch (const ExceptionBase &e)
+        {
+          throw std::runtime_error(text.locate(message_of(e)));
+        }
       for (const auto &assignment : line.overrides)
         prm.parse_input_from_string(override_as_prm(assignment),
                                     "--set " + assignment);

@@ -18,7 +18,9 @@ namespace bsmpm
    *   the pointwise relative errors |h - a| / |a|; a component is left out
    *   when its exact value vanishes at some point.
    * - A_u, A_v, A_sigma_xx, A_sigma_yy, A_sigma_xy: volume-weighted means of
-   *   the absolute errors; max_A_u, max_A_v: their maxima.
+   *   the absolute errors; max_A_u, max_A_v: their maxima, and
+   *   max_A_u_at_x, ..._y (and for v) the initial position of the point
+   *   where each occurs.
    * - L2_u, L2_sigma: relative L2 errors over the points,
    *   sqrt(sum V |h - a|^2 / sum V |a|^2), with the Frobenius norm for the
    *   stress.
