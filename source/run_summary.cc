@@ -33,8 +33,8 @@ namespace bsmpm
     }
 
     void
-    write_map(std::ostream &                       out,
-              const std::string &                  name,
+    write_map(std::ostream                        &out,
+              const std::string                   &name,
               const std::map<std::string, double> &values,
               const bool                           last = false)
     {
@@ -124,8 +124,9 @@ namespace bsmpm
         return;
       out << '\n' << title << '\n';
       for (const auto &[key, value] : values)
-        out << "  " << std::left << std::setw(24) << key << std::right
-            << std::scientific << std::setprecision(6) << value << '\n';
+        if (key.find("_at_") == std::string::npos) // places: in the JSON only
+          out << "  " << std::left << std::setw(24) << key << std::right
+              << std::scientific << std::setprecision(6) << value << '\n';
     };
     print("errors", errors);
     print("quantities", quantities);
