@@ -151,22 +151,14 @@ namespace bsmpm
 
   void
   OutputWriter::write_serial_series(
-    const std::string &                              series,
-    const std::string &                              extension,
-    const unsigned int                               step,
-    const double                                     time,
-    const std::function<void(const std::string &)> &writer)
+    const std::string &                          series,
+    const unsigned int                           step,
+    const double                                 time,
+    const std::function<void(std::ostream &)> &writer)
   {
     const std::string file =
-      series + "-" + Utilities::int_to_string(step, 4) + "." + extension;
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        const std::string path      = output_directory + "/" + file;
-        const std::string temporary = output_directory + "/.tmp-" + file;
-        writer(temporary);
-        AssertThrow(std::rename(temporary.c_str(), path.c_str()) == 0,
-                    ExcMessage("Output: cannot write the file '" + path + "'."));
-      }
+      series + "-" + Utilities::int_to_string(step, 4) + ".vtu";
+    write_root_file(file, writer);
     collections[series].push_back({time, file});
   }
 

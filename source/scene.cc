@@ -9,7 +9,7 @@
 
 #include <deal.II/particles/data_out.h>
 
-#include <bsmpm/curve_vtk_writer.h>
+#include <bsmpm/curve_output.h>
 #include <bsmpm/error_measures.h>
 #include <bsmpm/parameter_tools.h>
 #include <bsmpm/scene.h>
@@ -475,17 +475,17 @@ namespace bsmpm
           for (std::size_t i = 0; i + 3 < part.size(); i += 4)
             band.push_back(
               {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3]});
-        output.write_serial_series("curves", "vtp", step, load_factor,
-                                   [this](const std::string &file) {
-                                     CurveVtkWriter::write_curves(file,
-                                                                  boundary_curves);
+        output.write_serial_series("curves", step, load_factor,
+                                   [this](std::ostream &out) {
+                                     CurveOutput::write_curves(out,
+                                                               boundary_curves);
                                    });
-        output.write_serial_series("curve_points", "vtp", step, load_factor,
-                                   [&](const std::string &file) {
-                                     CurveVtkWriter::write_points(file,
-                                                                  boundary_curves,
-                                                                  gauss,
-                                                                  band);
+        output.write_serial_series("curve_points", step, load_factor,
+                                   [&](std::ostream &out) {
+                                     CurveOutput::write_points(out,
+                                                               boundary_curves,
+                                                               gauss,
+                                                               band);
                                    });
       }
 

@@ -73,15 +73,14 @@ namespace bsmpm
                  const DataOutInterface<dim, 2> &   data);
 
     /**
-     * Writes a file that only process 0 produces (such as a .vtp of curves)
+     * Writes a .vtu file that only process 0 produces (such as the curves)
      * and records it in the collections.
      */
     void
-    write_serial_series(const std::string &                         series,
-                        const std::string &                         extension,
-                        const unsigned int                          step,
-                        const double                                time,
-                        const std::function<void(const std::string &)> &writer);
+    write_serial_series(const std::string &                          series,
+                        const unsigned int                           step,
+                        const double                                 time,
+                        const std::function<void(std::ostream &)> &writer);
 
     /** Rewrites the .pvd collections (process 0 only). */
     void
