@@ -67,6 +67,9 @@ def main():
                         help="NAME=RATE: require this rate between the last two runs")
     parser.add_argument("--csv", help="write a CSV with one row per run")
     parser.add_argument("--mpirun", type=int, default=1)
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="run each point this many times and keep the "
+                             "fastest (wall times per phase from that run)")
     args = parser.parse_args()
 
     values = [v.strip() for v in args.values.split(",")]
@@ -74,14 +77,19 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for i, value in enumerate(values):
-            summary = run(args, value, os.path.join(tmp, f"run{i}"), i)
+            runs = [run(args, value, os.path.join(tmp, f"run{i}-{k}"), i)
+                    for k in range(args.repeat)]
+            summary = min(runs, key=lambda s: s["timing"]["total"])
             results = dict(summary["errors"])
             results.update(summary["quantities"])
             rows.append({"value": float(value),
                          "n_dofs": summary["n_dofs"],
                          "n_material_points": summary["n_material_points"],
                          "time": summary["timing"]["total"],
-                         **{n: results.get(n, float("nan")) for n in names}})
+                         **{n: results.get(n, float("nan")) for n in names},
+                         **{"time " + phase: t
+                            for phase, t in summary["timing"].items()
+                            if phase != "total"}})
 
     header = f"{args.parameter:>28} {'dofs':>8} {'points':>9}"
     for n in names:
@@ -102,8 +110,11 @@ def main():
         print(line)
 
     if args.csv:
+        fields = []
+        for row in rows:
+            fields += [k for k in row if k not in fields]
         with open(args.csv, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+            writer = csv.DictWriter(f, fieldnames=fields, restval=0.0)
             writer.writeheader()
             writer.writerows(rows)
 

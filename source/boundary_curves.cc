@@ -358,7 +358,8 @@ namespace bsmpm
 
 
   void
-  BoundaryCurves::create_initial_curves(const BodyRegion &region)
+  BoundaryCurves::create_initial_curves(const BodyRegion &    region,
+                                        const BackgroundGrid &grid)
   {
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
@@ -380,12 +381,43 @@ namespace bsmpm
             rebuild(curve);
           }
       }
+
+    trimming_grid = &grid;
+    trimming_state.assign(std::size_t(grid.n_cells(0)) * grid.n_cells(1), 0);
+    const UniformGrid uniform{grid.lower_left(),
+                              grid.cell_size(),
+                              {{grid.n_cells(0), grid.n_cells(1)}}};
+    for (const auto &curve : curves)
+      if (curve.trims_material_points && curve.spline)
+        for (const auto &piece :
+             CurveCellIntersection::cut(*curve.spline, uniform))
+          trimming_state[piece.cell[1] * grid.n_cells(0) + piece.cell[0]] = 3;
   }
 
 
 
   bool
   BoundaryCurves::trims(const Point<2> &p) const
+  {
+    if (trimming_grid == nullptr || !trimming_grid->contains(p))
+      return outside_trimming_curve(p);
+    const auto     ij    = trimming_grid->cell_index(p);
+    unsigned char &state = trimming_state[ij[1] * trimming_grid->n_cells(0) + ij[0]];
+    if (state == 3)
+      return outside_trimming_curve(p);
+    if (state == 0)
+      {
+        const Point<2> center =
+          trimming_grid->cell_origin(ij) + 0.5 * trimming_grid->cell_size();
+        state = outside_trimming_curve(center) ? 2 : 1;
+      }
+    return state == 2;
+  }
+
+
+
+  bool
+  BoundaryCurves::outside_trimming_curve(const Point<2> &p) const
   {
     for (const auto &curve : curves)
       if (curve.trims_material_points && curve.spline)

@@ -21,7 +21,9 @@ namespace bsmpm
   Scene::Scene(const MPI_Comm communicator)
     : communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    // The timer's own communicator is only used for output at destruction,
+    // which is off; statistics over processes are printed explicitly.
+    , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
     , grid(communicator)
     , points(grid)
     , output(communicator)
@@ -113,33 +115,40 @@ namespace bsmpm
   void
   Scene::setup()
   {
-    TimerOutput::Scope t(timer, "setup");
-    output.prepare_directory();
-
-    grid.create();
-    // Curves given by positions exist before the material points, which
-    // they may trim; curves through material points after them.
-    boundary_curves.create_initial_curves(region);
-    points.generate(layout, region, [this](const Point<2> &p) {
-      return boundary_curves.trims(p);
-    });
-    std::vector<types::particle_index> tracked;
-    if (!boundary_curves.empty())
-      tracked = boundary_curves.create_points(points, region);
-    if (has_probe)
-      {
-        probe_slot = tracked.size();
-        tracked.push_back(points.add_tracking_points({probe_position})[0]);
-      }
-    if (!tracked.empty())
-      {
-        points.track(tracked);
-        boundary_curves.read_initial_positions(points);
-      }
-    kernel = std::make_unique<Q1CellKernel>(grid.fe(),
-                                            grid.cell_size(),
-                                            material.stiffness());
-    setup_system();
+    {
+      TimerOutput::Scope t(timer, "setup: grid");
+      output.prepare_directory();
+      grid.create();
+    }
+    {
+      TimerOutput::Scope t(timer, "setup: points");
+      // Curves given by positions exist before the material points, which
+      // they may trim; curves through material points after them.
+      boundary_curves.create_initial_curves(region, grid);
+      points.generate(layout, region, [this](const Point<2> &p) {
+        return boundary_curves.trims(p);
+      });
+      std::vector<types::particle_index> tracked;
+      if (!boundary_curves.empty())
+        tracked = boundary_curves.create_points(points, region);
+      if (has_probe)
+        {
+          probe_slot = tracked.size();
+          tracked.push_back(points.add_tracking_points({probe_position})[0]);
+        }
+      if (!tracked.empty())
+        {
+          points.track(tracked);
+          boundary_curves.read_initial_positions(points);
+        }
+    }
+    {
+      TimerOutput::Scope t(timer, "setup: system");
+      kernel = std::make_unique<Q1CellKernel>(grid.fe(),
+                                              grid.cell_size(),
+                                              material.stiffness());
+      setup_system();
+    }
 
     run_summary.scene             = scene_name;
     run_summary.n_cells           = grid.triangulation().n_global_active_cells();

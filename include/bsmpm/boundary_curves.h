@@ -166,8 +166,12 @@ namespace bsmpm
       return curves.empty();
     }
 
-    /** Whether a material point at @p p is cut away by a trimming curve
-     * (it lies on the outer side of it). */
+    /**
+     * Whether a material point at @p p (in the grid) is cut away by a
+     * trimming curve: it lies on the outer side of it. Only points in cells
+     * that a trimming curve cuts need a closest-point search; every other
+     * cell lies wholly on one side, decided once by its centre.
+     */
     bool
     trims(const Point<2> &p) const;
 
@@ -177,7 +181,7 @@ namespace bsmpm
      * must exist before the material points, to trim them.
      */
     void
-    create_initial_curves(const BodyRegion &region);
+    create_initial_curves(const BodyRegion &region, const BackgroundGrid &grid);
 
     /**
      * Inserts the tracking points of the curves, or finds the material
@@ -229,8 +233,17 @@ namespace bsmpm
     void
     rebuild(BoundaryCurve &curve) const;
 
+    /** Whether @p p lies on the outer side of a trimming curve (search). */
+    bool
+    outside_trimming_curve(const Point<2> &p) const;
+
     std::vector<BoundaryCurve> curves;
     std::vector<Source>        sources;
+
+    /** Per grid cell (row-major): 0 unknown, 1 kept, 2 trimmed, 3 cut by a
+     * trimming curve; filled lazily by trims(). */
+    const BackgroundGrid *             trimming_grid = nullptr;
+    mutable std::vector<unsigned char> trimming_state;
   };
 } // namespace bsmpm
 

@@ -49,12 +49,18 @@ namespace bsmpm
 
     Report
     solve(const TrilinosWrappers::SparseMatrix &matrix,
-          TrilinosWrappers::MPI::Vector &       solution,
-          const TrilinosWrappers::MPI::Vector & rhs,
-          const DoFHandler<2> &                 dof_handler) const;
+          TrilinosWrappers::MPI::Vector        &solution,
+          const TrilinosWrappers::MPI::Vector  &rhs,
+          const DoFHandler<2>                  &dof_handler) const;
 
   private:
-    Method       method              = Method::direct;
+    /** Sparse LU with iterative refinement. */
+    Report
+    solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
+                 TrilinosWrappers::MPI::Vector        &solution,
+                 const TrilinosWrappers::MPI::Vector  &rhs) const;
+
+    Method       method              = Method::automatic;
     double       tolerance           = 1e-12;
     unsigned int max_iterations      = 10000;
     unsigned int automatic_threshold = 100000;
