@@ -121,8 +121,8 @@ namespace bsmpm
   {
     // Coarse cells are trees in p4est: make as few as the refinement of a
     // coarser rectangle allows, since refinement is cheaper than many trees.
-    unsigned int refinements = 0;
-    std::array<unsigned int, 2> coarse = cells;
+    unsigned int                refinements = 0;
+    std::array<unsigned int, 2> coarse      = cells;
     while (coarse[0] % 2 == 0 && coarse[1] % 2 == 0 && refinements < 20)
       {
         coarse[0] /= 2;
@@ -147,7 +147,7 @@ namespace bsmpm
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const auto ij = cell_index(cell);
+          const auto ij                               = cell_index(cell);
           owned_cell_lookup[ij[1] * cells[0] + ij[0]] = cell;
         }
   }

@@ -14,8 +14,9 @@ namespace bsmpm
     prm.enter_subsection("Body region");
     prm.declare_entry("Shape",
                       "rectangle",
-                      Patterns::Selection("rectangle|rotated rectangle|"
-                                          "annulus sector|rectangle minus disc"),
+                      Patterns::Selection(
+                        "rectangle|rotated rectangle|"
+                        "annulus sector|rectangle minus disc"),
                       "Shape of the body at the start of the run.");
     prm.declare_entry("Lower left corner",
                       "0, 0",
@@ -84,12 +85,12 @@ namespace bsmpm
            Shape::rotated_rectangle :
            (shape == "annulus sector" ? Shape::annulus_sector :
                                         Shape::rectangle_minus_disc));
-    lower_left  = ParameterTools::get_point(prm, "Lower left corner");
-    upper_right = ParameterTools::get_point(prm, "Upper right corner");
-    center      = ParameterTools::get_point(prm, "Center");
-    width       = prm.get_double("Width");
-    height      = prm.get_double("Height");
-    angle       = prm.get_double("Angle") * numbers::PI / 180.;
+    lower_left           = ParameterTools::get_point(prm, "Lower left corner");
+    upper_right          = ParameterTools::get_point(prm, "Upper right corner");
+    center               = ParameterTools::get_point(prm, "Center");
+    width                = prm.get_double("Width");
+    height               = prm.get_double("Height");
+    angle                = prm.get_double("Angle") * numbers::PI / 180.;
     annulus.center       = center;
     annulus.inner_radius = prm.get_double("Inner radius");
     annulus.outer_radius = prm.get_double("Outer radius");
@@ -239,12 +240,12 @@ namespace bsmpm
                            std::to_string(n) + "."));
     // The parts of the boundary, each from its first point to its last, in
     // counter-clockwise order round the body.
-    std::vector<std::string>                            names;
+    std::vector<std::string>                           names;
     std::vector<std::function<Point<2>(const double)>> parts;
     if (region_shape == Shape::annulus_sector)
       {
-        const Sector &a   = annulus;
-        const auto    arc = [a](const double r, const double t0, const double t1) {
+        const Sector &a = annulus;
+        const auto arc = [a](const double r, const double t0, const double t1) {
           return [=](const double f) {
             const double t = t0 + f * (t1 - t0);
             return Point<2>(a.center[0] + r * std::cos(t),
@@ -293,7 +294,9 @@ namespace bsmpm
           {
             result.corners.push_back(result.points.size());
             const auto points = sample(part, true);
-            result.points.insert(result.points.end(), points.begin(), points.end());
+            result.points.insert(result.points.end(),
+                                 points.begin(),
+                                 points.end());
           }
         return result;
       }
@@ -327,8 +330,9 @@ namespace bsmpm
             const unsigned int    n = 720;
             for (unsigned int k = 0; k <= n; ++k)
               {
-                const double a = annulus.start_angle +
-                                 (annulus.end_angle - annulus.start_angle) * k / n;
+                const double a =
+                  annulus.start_angle +
+                  (annulus.end_angle - annulus.start_angle) * k / n;
                 for (const double r :
                      {annulus.inner_radius, annulus.outer_radius})
                   points.emplace_back(annulus.center[0] + r * std::cos(a),

@@ -70,13 +70,14 @@ namespace bsmpm
           std::istringstream fields(line);
           double             x, y;
           std::string        rest;
-          const bool ok = static_cast<bool>(fields >> x >> y) && !(fields >> rest);
+          const bool         ok =
+            static_cast<bool>(fields >> x >> y) && !(fields >> rest);
           if (!ok && number == 1 && std::isalpha(line[0]))
             continue; // a header
           AssertThrow(ok && std::isfinite(x) && std::isfinite(y),
                       ExcMessage(where + ": line " + std::to_string(number) +
-                                 " of '" + file +
-                                 "' is not a point 'x, y': '" + line + "'."));
+                                 " of '" + file + "' is not a point 'x, y': '" +
+                                 line + "'."));
           points.emplace_back(x, y);
         }
       return points;
@@ -130,7 +131,8 @@ namespace bsmpm
         catch (...)
           {
             AssertThrow(false,
-                        ExcMessage(where + ": 'pressure' needs a number, got '" +
+                        ExcMessage(where +
+                                   ": 'pressure' needs a number, got '" +
                                    arguments + "'."));
           }
         ParameterTools::require_finite(condition.pressure, where);
@@ -220,7 +222,7 @@ namespace bsmpm
       if (c.covers(k, n_segments()))
         found = &c;
     return (found && found->kind != CurveCondition::Kind::free) ? found :
-                                                                    nullptr;
+                                                                  nullptr;
   }
 
 
@@ -343,8 +345,8 @@ namespace bsmpm
             source.edge     = Utilities::trim(prm.get("Edge"));
             source.n_points = prm.get_integer("Number of points");
             if (source.kind == "coordinates")
-              source.positions =
-                parse_coordinates(prm.get("Coordinates"), where + "/Coordinates");
+              source.positions = parse_coordinates(prm.get("Coordinates"),
+                                                   where + "/Coordinates");
             else if (source.kind == "file")
               source.positions = read_points_file(prm.get("File"), where);
             curves.push_back(std::move(curve));
@@ -358,13 +360,13 @@ namespace bsmpm
 
 
   void
-  BoundaryCurves::create_initial_curves(const BodyRegion &    region,
+  BoundaryCurves::create_initial_curves(const BodyRegion     &region,
                                         const BackgroundGrid &grid)
   {
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
         BoundaryCurve &curve  = curves[c];
-        Source &       source = sources[c];
+        Source        &source = sources[c];
         if (source.kind == "region edge")
           {
             const auto edge =
@@ -401,8 +403,9 @@ namespace bsmpm
   {
     if (trimming_grid == nullptr || !trimming_grid->contains(p))
       return outside_trimming_curve(p);
-    const auto     ij    = trimming_grid->cell_index(p);
-    unsigned char &state = trimming_state[ij[1] * trimming_grid->n_cells(0) + ij[0]];
+    const auto     ij = trimming_grid->cell_index(p);
+    unsigned char &state =
+      trimming_state[ij[1] * trimming_grid->n_cells(0) + ij[0]];
     if (state == 3)
       return outside_trimming_curve(p);
     if (state == 0)
@@ -432,18 +435,18 @@ namespace bsmpm
 
 
   std::vector<types::particle_index>
-  BoundaryCurves::create_points(MaterialPoints &  points,
+  BoundaryCurves::create_points(MaterialPoints   &points,
                                 const BodyRegion &region)
   {
     // A point may belong to two curves (a corner of the outer layer): it is
     // tracked once.
-    std::vector<types::particle_index>                     tracked;
-    std::map<types::particle_index, unsigned int>          slot_of;
-    std::vector<std::vector<types::particle_index>>        ids(curves.size());
+    std::vector<types::particle_index>              tracked;
+    std::map<types::particle_index, unsigned int>   slot_of;
+    std::vector<std::vector<types::particle_index>> ids(curves.size());
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
         BoundaryCurve &curve  = curves[c];
-        Source &       source = sources[c];
+        Source        &source = sources[c];
         if (source.kind == "material points")
           {
             const auto edge = region.boundary_points(source.edge, 2);
@@ -496,7 +499,7 @@ namespace bsmpm
     std::vector<Point<2>> positions;
     std::vector<Voigt>    stresses;
     points.tracked_states(positions, stresses);
-    const UniformGrid           uniform{grid.lower_left(),
+    const UniformGrid uniform{grid.lower_left(),
                               grid.cell_size(),
                               {{grid.n_cells(0), grid.n_cells(1)}}};
     for (auto &curve : curves)

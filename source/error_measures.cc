@@ -4,18 +4,18 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <vector>
-#include <cmath>
 
 namespace bsmpm
 {
   std::map<std::string, double>
   compute_errors(const MaterialPoints &points,
-                 const ExactSolution & exact,
+                 const ExactSolution  &exact,
                  const MPI_Comm        communicator)
   {
-    using P = MaterialPoints::Property;
+    using P                                = MaterialPoints::Property;
     const std::array<std::string, 5> names = {
       {"u", "v", "sigma_xx", "sigma_yy", "sigma_xy"}};
 
@@ -24,7 +24,7 @@ namespace bsmpm
     std::vector<double> min_exact(5, std::numeric_limits<double>::max());
     double volume = 0, u_err2 = 0, u_norm2 = 0, s_err2 = 0, s_norm2 = 0;
 
-    Vector<double> a(5);
+    Vector<double>          a(5);
     std::array<Point<2>, 2> worst; // where max_A_u, max_A_v occur
     for (const auto &particle : points.particle_handler())
       {
@@ -64,8 +64,10 @@ namespace bsmpm
     // The worst points' places, from the process that holds each.
     for (unsigned int c = 0; c < 2; ++c)
       {
-        const auto stats = Utilities::MPI::min_max_avg(max_abs[c], communicator);
-        worst[c] = Utilities::MPI::broadcast(communicator, worst[c], stats.max_index);
+        const auto stats =
+          Utilities::MPI::min_max_avg(max_abs[c], communicator);
+        worst[c] =
+          Utilities::MPI::broadcast(communicator, worst[c], stats.max_index);
       }
     Utilities::MPI::sum(abs_sum, communicator, abs_sum);
     Utilities::MPI::sum(rel_sum, communicator, rel_sum);
@@ -86,14 +88,16 @@ namespace bsmpm
         if (min_exact[c] > 1e-14 * max_exact[c])
           errors["R_" + names[c]] = rel_sum[c] / volume;
       }
-    errors["max_A_u"]  = max_abs[0];
-    errors["max_A_v"]  = max_abs[1];
+    errors["max_A_u"]      = max_abs[0];
+    errors["max_A_v"]      = max_abs[1];
     errors["max_A_u_at_x"] = worst[0][0];
     errors["max_A_u_at_y"] = worst[0][1];
     errors["max_A_v_at_x"] = worst[1][0];
     errors["max_A_v_at_y"] = worst[1][1];
-    errors["L2_u"]     = u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2 / volume);
-    errors["L2_sigma"] = s_norm2 > 0 ? std::sqrt(s_err2 / s_norm2) : std::sqrt(s_err2 / volume);
+    errors["L2_u"] =
+      u_norm2 > 0 ? std::sqrt(u_err2 / u_norm2) : std::sqrt(u_err2 / volume);
+    errors["L2_sigma"] =
+      s_norm2 > 0 ? std::sqrt(s_err2 / s_norm2) : std::sqrt(s_err2 / volume);
     return errors;
   }
 
@@ -115,9 +119,9 @@ namespace bsmpm
           }
         if (r_max - r_min > 1e-9 * r_max)
           continue; // not an arc about the axis
-        const double r0    = (r_min + r_max) / 2;
-        const double exact = r0 + lame.radial_displacement(r0);
-        const unsigned int n = 1000;
+        const double       r0    = (r_min + r_max) / 2;
+        const double       exact = r0 + lame.radial_displacement(r0);
+        const unsigned int n     = 1000;
         double             mean = 0, error = 0;
         for (unsigned int i = 0; i < n; ++i)
           {

@@ -118,9 +118,9 @@ namespace bsmpm
 
 
   std::unique_ptr<ExactSolution>
-  ExactSolution::create(ParameterHandler &           prm,
+  ExactSolution::create(ParameterHandler            &prm,
                         const LinearElasticMaterial &material,
-                        const Tensor<1, 2> &         gravity)
+                        const Tensor<1, 2>          &gravity)
   {
     std::unique_ptr<ExactSolution> solution;
     prm.enter_subsection("Exact solution");
@@ -128,11 +128,12 @@ namespace bsmpm
     if (name == "column under self weight")
       {
         prm.enter_subsection("Column");
-        solution = std::make_unique<ColumnUnderSelfWeight>(
-          material,
-          material.density() * gravity[1],
-          prm.get_double("Base"),
-          prm.get_double("Height"));
+        solution =
+          std::make_unique<ColumnUnderSelfWeight>(material,
+                                                  material.density() *
+                                                    gravity[1],
+                                                  prm.get_double("Base"),
+                                                  prm.get_double("Height"));
         prm.leave_subsection();
       }
     else if (name == "constant stress")
@@ -149,23 +150,25 @@ namespace bsmpm
     else if (name == "lame cylinder")
       {
         prm.enter_subsection("Lame cylinder");
-        solution = std::make_unique<LameCylinder>(
-          material,
-          ParameterTools::get_point(prm, "Center"),
-          prm.get_double("Inner radius"),
-          prm.get_double("Outer radius"),
-          prm.get_double("Inner pressure"),
-          prm.get_double("Inner displacement"));
+        solution =
+          std::make_unique<LameCylinder>(material,
+                                         ParameterTools::get_point(prm,
+                                                                   "Center"),
+                                         prm.get_double("Inner radius"),
+                                         prm.get_double("Outer radius"),
+                                         prm.get_double("Inner pressure"),
+                                         prm.get_double("Inner displacement"));
         prm.leave_subsection();
       }
     else if (name == "kirsch plate")
       {
         prm.enter_subsection("Kirsch plate");
-        solution = std::make_unique<KirschPlate>(
-          material,
-          ParameterTools::get_point(prm, "Center"),
-          prm.get_double("Hole radius"),
-          prm.get_double("Far-field stress"));
+        solution =
+          std::make_unique<KirschPlate>(material,
+                                        ParameterTools::get_point(prm,
+                                                                  "Center"),
+                                        prm.get_double("Hole radius"),
+                                        prm.get_double("Far-field stress"));
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -199,7 +202,8 @@ namespace bsmpm
   {
     // sigma_yy' = -b_y with sigma_yy(H) = 0, and eps_yy = sigma_yy / E_c.
     const double y = X[1] - base;
-    return Tensor<1, 2>({0., b_y * (height * y - y * y / 2) / constrained_modulus});
+    return Tensor<1, 2>(
+      {0., b_y * (height * y - y * y / 2) / constrained_modulus});
   }
 
 
@@ -220,10 +224,10 @@ namespace bsmpm
   ColumnUnderSelfWeight::description() const
   {
     std::ostringstream s;
-    s << "column under self weight: unit weight " << -b_y
-      << " N/m^3, height " << height << " m, constrained modulus "
-      << constrained_modulus << " Pa, top displacement "
-      << displacement(Point<2>(0, base + height))[1] << " m";
+    s << "column under self weight: unit weight " << -b_y << " N/m^3, height "
+      << height << " m, constrained modulus " << constrained_modulus
+      << " Pa, top displacement " << displacement(Point<2>(0, base + height))[1]
+      << " m";
     return s.str();
   }
 
@@ -232,12 +236,12 @@ namespace bsmpm
   // ---------------------------------------------------------------------
 
   ConstantStress::ConstantStress(const LinearElasticMaterial &material,
-                                 const Voigt &                stress_in_frame,
+                                 const Voigt                 &stress_in_frame,
                                  const double                 angle,
-                                 const Point<2> &             fixed_point)
+                                 const Point<2>              &fixed_point)
     : fixed_point(fixed_point)
   {
-    const Voigt eps_in_frame = invert(material.stiffness()) * stress_in_frame;
+    const Voigt  eps_in_frame = invert(material.stiffness()) * stress_in_frame;
     Tensor<2, 2> R;
     R[0][0] = R[1][1] = std::cos(angle);
     R[1][0]           = std::sin(angle);
@@ -282,7 +286,7 @@ namespace bsmpm
   // ---------------------------------------------------------------------
 
   LameCylinder::LameCylinder(const LinearElasticMaterial &material,
-                             const Point<2> &             center,
+                             const Point<2>              &center,
                              const double                 inner_radius,
                              const double                 outer_radius,
                              const double                 pressure,
@@ -293,7 +297,8 @@ namespace bsmpm
     , p(pressure)
     , E(material.youngs_modulus())
     , nu(material.poissons_ratio())
-    , plane_strain(material.model() == LinearElasticMaterial::Model::plane_strain)
+    , plane_strain(material.model() ==
+                   LinearElasticMaterial::Model::plane_strain)
   {
     AssertThrow(a > 0 && b > a,
                 ExcMessage("Exact solution: the Lame cylinder needs "
@@ -332,11 +337,11 @@ namespace bsmpm
   SymmetricTensor<2, 2>
   LameCylinder::stress(const Point<2> &X) const
   {
-    const Tensor<1, 2> d  = X - center;
-    const double       r2 = d.norm_square();
-    const double       k  = p * a * a / (b * b - a * a);
-    const double srr = k * (1 - b * b / r2), stt = k * (1 + b * b / r2);
-    const double c2 = d[0] * d[0] / r2, s2 = d[1] * d[1] / r2,
+    const Tensor<1, 2> d   = X - center;
+    const double       r2  = d.norm_square();
+    const double       k   = p * a * a / (b * b - a * a);
+    const double       srr = k * (1 - b * b / r2), stt = k * (1 + b * b / r2);
+    const double       c2 = d[0] * d[0] / r2, s2 = d[1] * d[1] / r2,
                  cs = d[0] * d[1] / r2;
     SymmetricTensor<2, 2> sigma;
     sigma[0][0] = srr * c2 + stt * s2;
@@ -352,9 +357,9 @@ namespace bsmpm
   {
     std::ostringstream s;
     s << "lame cylinder: r_i = " << a << " m, r_o = " << b
-      << " m, inner pressure " << p << " Pa, u_r(r_i) = "
-      << radial_displacement(a) << " m, u_r(r_o) = " << radial_displacement(b)
-      << " m";
+      << " m, inner pressure " << p
+      << " Pa, u_r(r_i) = " << radial_displacement(a)
+      << " m, u_r(r_o) = " << radial_displacement(b) << " m";
     return s.str();
   }
 
@@ -363,7 +368,7 @@ namespace bsmpm
   // ---------------------------------------------------------------------
 
   KirschPlate::KirschPlate(const LinearElasticMaterial &material,
-                           const Point<2> &             center,
+                           const Point<2>              &center,
                            const double                 hole_radius,
                            const double                 far_field_stress)
     : center(center)
@@ -401,10 +406,10 @@ namespace bsmpm
   SymmetricTensor<2, 2>
   KirschPlate::stress(const Point<2> &X) const
   {
-    const Tensor<1, 2> d    = X - center;
-    const double       r2   = d.norm_square();
-    const double       beta = std::atan2(d[1], d[0]);
-    const double       q2 = a * a / r2, q4 = 1.5 * q2 * q2;
+    const Tensor<1, 2>    d    = X - center;
+    const double          r2   = d.norm_square();
+    const double          beta = std::atan2(d[1], d[0]);
+    const double          q2 = a * a / r2, q4 = 1.5 * q2 * q2;
     SymmetricTensor<2, 2> sigma;
     sigma[0][0] = S - S * q2 * (1.5 * std::cos(2 * beta) + std::cos(4 * beta)) +
                   S * q4 * std::cos(4 * beta);

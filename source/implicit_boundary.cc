@@ -104,7 +104,7 @@ namespace bsmpm
   void
   ImplicitBoundary::mark_supporting_cells(const BoundaryCurves &curves,
                                           const BackgroundGrid &grid,
-                                          std::vector<bool> &   cells) const
+                                          std::vector<bool>    &cells) const
   {
     for (const auto &curve : curves.get_curves())
       for (const auto &piece : curve.pieces)
@@ -125,7 +125,7 @@ namespace bsmpm
   void
   ImplicitBoundary::mark_band_cells(const BoundaryCurves &curves,
                                     const BackgroundGrid &grid,
-                                    std::vector<bool> &   cells) const
+                                    std::vector<bool>    &cells) const
   {
     for (const auto &curve : curves.get_curves())
       for (const auto &piece : curve.pieces)
@@ -141,14 +141,14 @@ namespace bsmpm
 
   void
   ImplicitBoundary::assemble(
-    const BoundaryCurves &                             curves,
-    const BackgroundGrid &                             grid,
-    const Q1CellKernel &                               kernel,
-    const Tensor<2, 3> &                               C,
+    const BoundaryCurves                             &curves,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const Tensor<2, 3>                               &C,
     const LinearAlgebra::distributed::Vector<double> *prescribed,
-    const AffineConstraints<double> &                  constraints,
-    TrilinosWrappers::SparseMatrix &                   matrix,
-    TrilinosWrappers::MPI::Vector &                    rhs)
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   &matrix,
+    TrilinosWrappers::MPI::Vector                    &rhs)
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     points.clear();
@@ -176,7 +176,7 @@ namespace bsmpm
             for (unsigned int i = 0; i < n; ++i)
               da[i] = (*prescribed)(dof_indices[i]);
 
-          const bool          roller = condition->kind == CurveCondition::Kind::roller;
+          const bool roller = condition->kind == CurveCondition::Kind::roller;
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
           cell_matrix                = 0;
@@ -187,8 +187,8 @@ namespace bsmpm
               const double       u = piece.u_begin + along.point(q)[0] * du;
               const Point<2>     c = spline.value(u);
               const Tensor<1, 2> normal = -spline.outward_normal(u); // inward
-              const double       ds = spline.derivative(u).norm() * du *
-                                along.weight(q);
+              const double       ds =
+                spline.derivative(u).norm() * du * along.weight(q);
               const Tensor<2, 2> nn = outer_product(normal, normal);
 
               for (unsigned int r = 0; r < across.size(); ++r)
@@ -267,8 +267,8 @@ namespace bsmpm
 
   Tensor<1, 2>
   ImplicitBoundary::prescribed_value(const CurveCondition &condition,
-                                     const ExactSolution * exact,
-                                     const Point<2> &      x)
+                                     const ExactSolution  *exact,
+                                     const Point<2>       &x)
   {
     if (condition.function)
       return Tensor<1, 2>(
@@ -283,15 +283,15 @@ namespace bsmpm
 
   double
   ImplicitBoundary::fit_prescribed_displacement(
-    const BoundaryCurves &                      curves,
-    const BackgroundGrid &                      grid,
-    const Q1CellKernel &                        kernel,
-    const ExactSolution *                       exact,
+    const BoundaryCurves                       &curves,
+    const BackgroundGrid                       &grid,
+    const Q1CellKernel                         &kernel,
+    const ExactSolution                        *exact,
     const double                                factor,
-    TrilinosWrappers::SparseMatrix &            mass,
+    TrilinosWrappers::SparseMatrix             &mass,
     LinearAlgebra::distributed::Vector<double> &prescribed) const
   {
-    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    constexpr unsigned int n    = Q1CellKernel::dofs_per_cell;
     const MPI_Comm         comm = grid.mpi_communicator();
     const QGauss<1>        gauss(std::max(points_along, 4u));
 
@@ -299,7 +299,7 @@ namespace bsmpm
     LinearAlgebra::distributed::Vector<double> touched(
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
     std::vector<types::global_dof_index> dof_indices(n);
-    const auto for_each_piece = [&](const auto &f) {
+    const auto                           for_each_piece = [&](const auto &f) {
       for (const auto &curve : curves.get_curves())
         for (const auto &piece : curve.pieces)
           {
@@ -313,11 +313,12 @@ namespace bsmpm
               f(curve, piece, *condition, cell);
           }
     };
-    for_each_piece([&](const auto &, const auto &, const auto &, const auto &cell) {
-      cell->get_dof_indices(dof_indices);
-      for (const auto i : dof_indices)
-        touched(i) = 1;
-    });
+    for_each_piece(
+      [&](const auto &, const auto &, const auto &, const auto &cell) {
+        cell->get_dof_indices(dof_indices);
+        for (const auto i : dof_indices)
+          touched(i) = 1;
+      });
     touched.compress(VectorOperation::max);
     touched.update_ghost_values();
 
@@ -332,20 +333,22 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector rhs(grid.locally_owned_dofs(), comm);
     FullMatrix<double>            cell_matrix(n, n);
     Vector<double>                cell_rhs(n);
-    for_each_piece([&](const BoundaryCurve &curve,
-                       const CurvePiece &   piece,
+    for_each_piece([&](const BoundaryCurve  &curve,
+                       const CurvePiece     &piece,
                        const CurveCondition &condition,
-                       const auto &         cell) {
-      cell_matrix = 0;
-      cell_rhs    = 0;
+                       const auto           &cell) {
+      cell_matrix     = 0;
+      cell_rhs        = 0;
       const double du = piece.u_end - piece.u_begin;
       for (unsigned int q = 0; q < gauss.size(); ++q)
         {
-          const double u = piece.u_begin + gauss.point(q)[0] * du;
+          const double   u = piece.u_begin + gauss.point(q)[0] * du;
           const Point<2> x = curve.spline->value(u);
-          const double   ds = curve.spline->derivative(u).norm() * du * gauss.weight(q);
-          const Point<2> st = grid.local_coordinates(x, piece.cell);
-          const Tensor<1, 2> ua = factor * prescribed_value(condition, exact, x);
+          const double   ds =
+            curve.spline->derivative(u).norm() * du * gauss.weight(q);
+          const Point<2>     st = grid.local_coordinates(x, piece.cell);
+          const Tensor<1, 2> ua =
+            factor * prescribed_value(condition, exact, x);
           for (unsigned int i = 0; i < n; ++i)
             {
               const Tensor<1, 2> Ni = kernel.shape_value(i, st);
@@ -355,7 +358,8 @@ namespace bsmpm
             }
         }
       cell->get_dof_indices(dof_indices);
-      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, mass, rhs);
+      constraints.distribute_local_to_global(
+        cell_matrix, cell_rhs, dof_indices, mass, rhs);
     });
     // Rows of DoFs the boundary does not meet: identity.
     for (const auto i : grid.locally_owned_dofs())
@@ -364,33 +368,36 @@ namespace bsmpm
     mass.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
 
-    TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(), comm);
+    TrilinosWrappers::MPI::Vector  solution(grid.locally_owned_dofs(), comm);
     SolverControl                  control(1, 0);
     TrilinosWrappers::SolverDirect solver(control);
     solver.solve(mass, solution, rhs);
     constraints.distribute(solution);
 
-    prescribed.reinit(grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    prescribed.reinit(grid.locally_owned_dofs(),
+                      grid.locally_relevant_dofs(),
+                      comm);
     for (const auto i : grid.locally_owned_dofs())
       prescribed(i) = solution(i);
     prescribed.update_ghost_values();
 
     // Root mean square of the fit along the boundary.
-    double error2 = 0, length = 0;
+    double                    error2 = 0, length = 0;
     Q1CellKernel::LocalVector da;
-    for_each_piece([&](const BoundaryCurve &curve,
-                       const CurvePiece &   piece,
+    for_each_piece([&](const BoundaryCurve  &curve,
+                       const CurvePiece     &piece,
                        const CurveCondition &condition,
-                       const auto &         cell) {
+                       const auto           &cell) {
       cell->get_dof_indices(dof_indices);
       for (unsigned int i = 0; i < n; ++i)
         da[i] = prescribed(dof_indices[i]);
       const double du = piece.u_end - piece.u_begin;
       for (unsigned int q = 0; q < gauss.size(); ++q)
         {
-          const double u = piece.u_begin + gauss.point(q)[0] * du;
+          const double   u = piece.u_begin + gauss.point(q)[0] * du;
           const Point<2> x = curve.spline->value(u);
-          const double   ds = curve.spline->derivative(u).norm() * du * gauss.weight(q);
+          const double   ds =
+            curve.spline->derivative(u).norm() * du * gauss.weight(q);
           const Tensor<1, 2> misfit =
             kernel.displacement(da, grid.local_coordinates(x, piece.cell)) -
             factor * prescribed_value(condition, exact, x);
@@ -408,8 +415,8 @@ namespace bsmpm
   double
   ImplicitBoundary::support_displacement(const BoundaryCurves &curves,
                                          const BackgroundGrid &grid,
-                                         const Point<2> &      x,
-                                         Tensor<1, 2> &        w) const
+                                         const Point<2>       &x,
+                                         Tensor<1, 2>         &w) const
   {
     const double delta = band_width(grid);
     const auto   ij    = grid.cell_index(x);

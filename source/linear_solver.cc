@@ -72,8 +72,8 @@ namespace bsmpm
     /** ||A x - b|| / ||b||. */
     double
     relative_residual(const TrilinosWrappers::SparseMatrix &A,
-                      const TrilinosWrappers::MPI::Vector & x,
-                      const TrilinosWrappers::MPI::Vector & b)
+                      const TrilinosWrappers::MPI::Vector  &x,
+                      const TrilinosWrappers::MPI::Vector  &b)
     {
       TrilinosWrappers::MPI::Vector r(b);
       A.vmult(r, x);

@@ -6,8 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -105,7 +105,7 @@ namespace
    */
   struct ParameterText
   {
-    std::string                                      text;
+    std::string                                       text;
     std::vector<std::pair<std::string, unsigned int>> origin;
 
     void
@@ -145,15 +145,15 @@ namespace
     std::string
     locate(const std::string &message) const
     {
-      const std::string key = "Line <";
+      const std::string key   = "Line <";
       const auto        start = message.find(key);
       if (start == std::string::npos)
         return message;
-      const auto   end = message.find("> of file <<input>>", start);
+      const auto end = message.find("> of file <<input>>", start);
       if (end == std::string::npos)
         return message;
-      const unsigned int n =
-        std::stoul(message.substr(start + key.size(), end - start - key.size()));
+      const unsigned int n = std::stoul(
+        message.substr(start + key.size(), end - start - key.size()));
       if (n == 0 || n > origin.size())
         return message;
       return message.substr(0, start) + "line " +
@@ -171,7 +171,7 @@ namespace
     e.print_info(info);
     std::string text = info.str();
     // Trim the indentation deal.II puts in front of each line.
-    std::string trimmed;
+    std::string        trimmed;
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);)
       {

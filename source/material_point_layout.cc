@@ -11,7 +11,8 @@ namespace bsmpm
     prm.enter_subsection("Material points");
     prm.declare_entry("Layout",
                       "per cell",
-                      Patterns::Selection("per cell|lattice|polar|cell centroid"),
+                      Patterns::Selection(
+                        "per cell|lattice|polar|cell centroid"),
                       "per cell: n x n points in every grid cell; lattice: "
                       "nx x ny points over a rectangle; polar: n_r x n_theta "
                       "points over an annulus-sector body; cell centroid: one "
@@ -50,16 +51,16 @@ namespace bsmpm
   {
     prm.enter_subsection("Material points");
     const std::string kind = prm.get("Layout");
-    layout = kind == "per cell" ?
-               Kind::per_cell :
-               (kind == "lattice" ?
-                  Kind::lattice :
-                  (kind == "polar" ? Kind::polar : Kind::cell_centroid));
-    points_per_cell         = prm.get_integer("Points per cell");
-    const auto lattice      = ParameterTools::get_unsigned(prm, "Lattice points");
-    lattice_points          = {{lattice[0], lattice[1]}};
-    lattice_lower_left      = prm.get("Lattice lower left corner");
-    lattice_upper_right     = prm.get("Lattice upper right corner");
+    layout                 = kind == "per cell" ?
+                               Kind::per_cell :
+                               (kind == "lattice" ?
+                                  Kind::lattice :
+                                  (kind == "polar" ? Kind::polar : Kind::cell_centroid));
+    points_per_cell        = prm.get_integer("Points per cell");
+    const auto lattice  = ParameterTools::get_unsigned(prm, "Lattice points");
+    lattice_points      = {{lattice[0], lattice[1]}};
+    lattice_lower_left  = prm.get("Lattice lower left corner");
+    lattice_upper_right = prm.get("Lattice upper right corner");
     if (!lattice_lower_left.empty())
       ParameterTools::get_point(prm, "Lattice lower left corner");
     if (!lattice_upper_right.empty())
@@ -73,8 +74,8 @@ namespace bsmpm
 
   void
   MaterialPointLayout::for_each_point(
-    const BackgroundGrid &                               grid,
-    const BodyRegion &                                   region,
+    const BackgroundGrid                                &grid,
+    const BodyRegion                                    &region,
     const std::function<void(const Point<2> &, double)> &f) const
   {
     switch (layout)
@@ -102,9 +103,9 @@ namespace bsmpm
 
         case Kind::lattice:
           {
-            const BoundingBox<2> box = region.bounding_box();
+            const BoundingBox<2> box      = region.bounding_box();
             const auto           to_point = [](const std::string &text,
-                                     const Point<2> &   fallback) {
+                                     const Point<2>    &fallback) {
               if (text.empty())
                 return fallback;
               const auto v = Utilities::string_to_double(
@@ -115,8 +116,8 @@ namespace bsmpm
               to_point(lattice_lower_left, box.get_boundary_points().first);
             const Point<2> upper =
               to_point(lattice_upper_right, box.get_boundary_points().second);
-            const double dx     = (upper[0] - lower[0]) / lattice_points[0];
-            const double dy     = (upper[1] - lower[1]) / lattice_points[1];
+            const double dx = (upper[0] - lower[0]) / lattice_points[0];
+            const double dy = (upper[1] - lower[1]) / lattice_points[1];
             AssertThrow(dx > 0 && dy > 0,
                         ExcMessage("Material points: the lattice rectangle "
                                    "is empty."));
@@ -145,8 +146,8 @@ namespace bsmpm
                 {
                   // Clip the cell by each side of the convex body
                   // (Sutherland-Hodgman), then take area and centroid.
-                  const Point<2> o = grid.cell_origin({{i, j}});
-                  const Tensor<1, 2> &h = grid.cell_size();
+                  const Point<2>        o       = grid.cell_origin({{i, j}});
+                  const Tensor<1, 2>   &h       = grid.cell_size();
                   std::vector<Point<2>> polygon = {o,
                                                    o + Tensor<1, 2>({h[0], 0}),
                                                    o + h,
@@ -154,8 +155,8 @@ namespace bsmpm
                   for (unsigned int k = 0; k < 4 && !polygon.empty(); ++k)
                     {
                       const Point<2> a = corners[k], b = corners[(k + 1) % 4];
-                      const auto side = [&](const Point<2> &p) {
-                        return cross_product_2d(b - a)  * (p - a);
+                      const auto     side = [&](const Point<2> &p) {
+                        return cross_product_2d(b - a) * (p - a);
                       };
                       std::vector<Point<2>> clipped;
                       for (unsigned int m = 0; m < polygon.size(); ++m)
@@ -193,14 +194,16 @@ namespace bsmpm
             AssertThrow(region.shape() == BodyRegion::Shape::annulus_sector,
                         ExcMessage("Material points: the polar layout needs "
                                    "an annulus sector body region."));
-            const auto & s      = region.sector();
-            const double dr     = (s.outer_radius - s.inner_radius) / polar_points[0];
-            const double dtheta = (s.end_angle - s.start_angle) / polar_points[1];
+            const auto  &s = region.sector();
+            const double dr =
+              (s.outer_radius - s.inner_radius) / polar_points[0];
+            const double dtheta =
+              (s.end_angle - s.start_angle) / polar_points[1];
             for (unsigned int j = 0; j < polar_points[1]; ++j)
               for (unsigned int i = 0; i < polar_points[0]; ++i)
                 {
                   const double r0 = s.inner_radius + i * dr, r1 = r0 + dr;
-                  const double r  = (r0 + r1) / 2;
+                  const double r     = (r0 + r1) / 2;
                   const double theta = s.start_angle + (j + 0.5) * dtheta;
                   f(Point<2>(s.center[0] + r * std::cos(theta),
                              s.center[1] + r * std::sin(theta)),

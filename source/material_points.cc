@@ -30,7 +30,7 @@ namespace bsmpm
 
 
   void
-  MaterialPoints::insert(const Point<2> &            position,
+  MaterialPoints::insert(const Point<2>             &position,
                          const double                volume,
                          const types::particle_index id)
   {
@@ -61,9 +61,10 @@ namespace bsmpm
 
 
   void
-  MaterialPoints::generate(const MaterialPointLayout &                   layout,
-                           const BodyRegion &                            region,
-                           const std::function<bool(const Point<2> &)> &excluded)
+  MaterialPoints::generate(
+    const MaterialPointLayout                   &layout,
+    const BodyRegion                            &region,
+    const std::function<bool(const Point<2> &)> &excluded)
   {
     particles.initialize(grid.triangulation(),
                          grid.mapping(),
@@ -136,23 +137,26 @@ namespace bsmpm
 
 
   MaterialPoints::MoveReport
-  MaterialPoints::move(const Q1CellKernel &                              kernel,
-                       const LinearElasticMaterial &                     material,
-                       const LinearAlgebra::distributed::Vector<double> &increment,
-                       const LinearAlgebra::distributed::Vector<double> *prescribed,
-                       const std::vector<bool> *support_cells,
-                       const SupportFunction &  support)
+  MaterialPoints::move(
+    const Q1CellKernel                               &kernel,
+    const LinearElasticMaterial                      &material,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const std::vector<bool>                          *support_cells,
+    const SupportFunction                            &support)
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
     bool                found_example = false;
     tracked_local.clear();
 
-    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
-    Q1CellKernel::LocalVector            d, da{}, total;
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    Q1CellKernel::LocalVector d, da{}, total;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
-        if (!cell->is_locally_owned() || particles.n_particles_in_cell(cell) == 0)
+        if (!cell->is_locally_owned() ||
+            particles.n_particles_in_cell(cell) == 0)
           continue;
         cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
@@ -190,17 +194,18 @@ namespace bsmpm
             props[Property::displacement + 1] += du[1];
             if (props[Property::volume] > 0)
               {
-                report.max_displacement = std::max(
-                  report.max_displacement,
-                  std::hypot(props[Property::displacement],
-                             props[Property::displacement + 1]));
-                report.max_stress = std::max(
-                  report.max_stress,
-                  std::sqrt(props[Property::stress] * props[Property::stress] +
-                            props[Property::stress + 1] *
-                              props[Property::stress + 1] +
-                            2 * props[Property::stress + 2] *
-                              props[Property::stress + 2]));
+                report.max_displacement =
+                  std::max(report.max_displacement,
+                           std::hypot(props[Property::displacement],
+                                      props[Property::displacement + 1]));
+                report.max_stress =
+                  std::max(report.max_stress,
+                           std::sqrt(props[Property::stress] *
+                                       props[Property::stress] +
+                                     props[Property::stress + 1] *
+                                       props[Property::stress + 1] +
+                                     2 * props[Property::stress + 2] *
+                                       props[Property::stress + 2]));
               }
 
             const Point<2> x = particle.get_location() + du;
@@ -224,10 +229,11 @@ namespace bsmpm
       Utilities::MPI::max(report.max_stress, grid.mpi_communicator());
     report.n_left_grid =
       Utilities::MPI::sum(report.n_left_grid, grid.mpi_communicator());
-    const unsigned int rank = Utilities::MPI::this_mpi_process(grid.mpi_communicator());
-    const unsigned int reporter = Utilities::MPI::min(
-      found_example ? rank : numbers::invalid_unsigned_int,
-      grid.mpi_communicator());
+    const unsigned int rank =
+      Utilities::MPI::this_mpi_process(grid.mpi_communicator());
+    const unsigned int reporter =
+      Utilities::MPI::min(found_example ? rank : numbers::invalid_unsigned_int,
+                          grid.mpi_communicator());
     if (reporter != numbers::invalid_unsigned_int)
       report.example = Utilities::MPI::broadcast(grid.mpi_communicator(),
                                                  report.example,
@@ -243,11 +249,11 @@ namespace bsmpm
     const auto before = particles.n_global_particles();
     particles.sort_particles_into_subdomains_and_cells();
     AssertThrow(particles.n_global_particles() == before,
-                ExcMessage("Material points were lost while sorting them into "
-                           "cells: " +
-                           std::to_string(before -
-                                          particles.n_global_particles()) +
-                           " of them left the grid."));
+                ExcMessage(
+                  "Material points were lost while sorting them into "
+                  "cells: " +
+                  std::to_string(before - particles.n_global_particles()) +
+                  " of them left the grid."));
   }
 
 
@@ -260,9 +266,9 @@ namespace bsmpm
     const unsigned int n_sides = closed ? corners.size() : corners.size() - 1;
     for (unsigned int k = 0; k < n_sides; ++k)
       {
-        const Point<2>     p0 = corners[k], p1 = corners[(k + 1) % corners.size()];
-        const double       length = p0.distance(p1);
-        const Tensor<1, 2> along  = (p1 - p0) / length;
+        const Point<2> p0 = corners[k], p1 = corners[(k + 1) % corners.size()];
+        const double   length    = p0.distance(p1);
+        const Tensor<1, 2> along = (p1 - p0) / length;
         const Tensor<1, 2> inward({-along[1], along[0]});
         const double       tolerance = 1e-9 * length;
 
@@ -309,7 +315,7 @@ namespace bsmpm
 
   void
   MaterialPoints::scale_volumes(const std::vector<types::particle_index> &ids,
-                                const double                              factor)
+                                const double factor)
   {
     std::map<types::particle_index, unsigned int> count;
     for (const auto id : ids)
@@ -347,7 +353,7 @@ namespace bsmpm
 
   void
   MaterialPoints::record_if_tracked(const types::particle_index   id,
-                                    const Point<2> &              x,
+                                    const Point<2>               &x,
                                     const ArrayView<const double> properties)
   {
     const unsigned int slot = tracked_slot[id];
@@ -364,7 +370,7 @@ namespace bsmpm
 
   void
   MaterialPoints::tracked_states(std::vector<Point<2>> &positions,
-                                 std::vector<Voigt> &   stresses) const
+                                 std::vector<Voigt>    &stresses) const
   {
     const auto all =
       Utilities::MPI::all_gather(grid.mpi_communicator(), tracked_local);

@@ -30,18 +30,19 @@ namespace bsmpm
 
 
   void
-  NeumannLoads::assemble(const BoundaryCurves &           curves,
-                         const BackgroundGrid &           grid,
-                         const Q1CellKernel &             kernel,
-                         const ExactSolution *            exact,
+  NeumannLoads::assemble(const BoundaryCurves            &curves,
+                         const BackgroundGrid            &grid,
+                         const Q1CellKernel              &kernel,
+                         const ExactSolution             *exact,
                          const double                     load_factor,
                          const AffineConstraints<double> &constraints,
-                         TrilinosWrappers::MPI::Vector &  rhs)
+                         TrilinosWrappers::MPI::Vector   &rhs)
   {
     points.clear();
     const QGauss<1>                      gauss(n_gauss_points);
     Vector<double>                       cell_rhs(Q1CellKernel::dofs_per_cell);
-    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
 
     for (const auto &curve : curves.get_curves())
       for (const auto &piece : curve.pieces)
@@ -63,9 +64,9 @@ namespace bsmpm
           cell_rhs                   = 0;
           for (unsigned int q = 0; q < gauss.size(); ++q)
             {
-              const double   u = piece.u_begin +
-                               gauss.point(q)[0] * (piece.u_end - piece.u_begin);
-              const Point<2> x = spline.value(u);
+              const double u = piece.u_begin + gauss.point(q)[0] *
+                                                 (piece.u_end - piece.u_begin);
+              const Point<2> x  = spline.value(u);
               const double   dl = spline.derivative(u).norm() *
                                 (piece.u_end - piece.u_begin) * gauss.weight(q);
               const Tensor<1, 2> n = spline.outward_normal(u);

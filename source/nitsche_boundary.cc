@@ -7,7 +7,8 @@ namespace bsmpm
   namespace
   {
     bool
-    is_nitsche_support(const BoundaryCurve &curve, const CurveCondition *condition)
+    is_nitsche_support(const BoundaryCurve  &curve,
+                       const CurveCondition *condition)
     {
       return condition != nullptr && condition->is_support() &&
              curve.dirichlet_method == BoundaryCurve::DirichletMethod::nitsche;
@@ -17,8 +18,8 @@ namespace bsmpm
     Tensor<1, 2>
     traction(const Voigt &sigma, const Tensor<1, 2> &n)
     {
-      return Tensor<1, 2>({sigma[0] * n[0] + sigma[2] * n[1],
-                           sigma[2] * n[0] + sigma[1] * n[1]});
+      return Tensor<1, 2>(
+        {sigma[0] * n[0] + sigma[2] * n[1], sigma[2] * n[0] + sigma[1] * n[1]});
     }
   } // namespace
 
@@ -55,7 +56,7 @@ namespace bsmpm
   void
   NitscheBoundary::mark_supporting_cells(const BoundaryCurves &curves,
                                          const BackgroundGrid &grid,
-                                         std::vector<bool> &   cells) const
+                                         std::vector<bool>    &cells) const
   {
     for (const auto &curve : curves.get_curves())
       for (const auto &piece : curve.pieces)
@@ -74,19 +75,20 @@ namespace bsmpm
 
 
   void
-  NitscheBoundary::assemble(const BoundaryCurves &           curves,
-                            const BackgroundGrid &           grid,
-                            const Q1CellKernel &             kernel,
-                            const LinearElasticMaterial &    material,
-                            const ExactSolution *            exact,
+  NitscheBoundary::assemble(const BoundaryCurves            &curves,
+                            const BackgroundGrid            &grid,
+                            const Q1CellKernel              &kernel,
+                            const LinearElasticMaterial     &material,
+                            const ExactSolution             *exact,
                             const double                     increment_factor,
                             const AffineConstraints<double> &constraints,
-                            TrilinosWrappers::SparseMatrix & matrix,
-                            TrilinosWrappers::MPI::Vector &  rhs) const
+                            TrilinosWrappers::SparseMatrix  &matrix,
+                            TrilinosWrappers::MPI::Vector   &rhs) const
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
-    const double beta = penalty * material.youngs_modulus() / grid.min_cell_size();
+    const double           beta =
+      penalty * material.youngs_modulus() / grid.min_cell_size();
     const Tensor<2, 3> &C = material.stiffness();
 
     FullMatrix<double>                   cell_matrix(n, n);
@@ -105,7 +107,7 @@ namespace bsmpm
           if (cell == grid.dof_handler().end())
             continue;
 
-          const bool          roller = condition->kind == CurveCondition::Kind::roller;
+          const bool roller = condition->kind == CurveCondition::Kind::roller;
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
           const auto          range  = spline.segment_parameters(piece.segment);
@@ -119,7 +121,8 @@ namespace bsmpm
               const double       u  = piece.u_begin + gauss.point(q)[0] * du;
               const Point<2>     x  = spline.value(u);
               const Tensor<1, 2> nv = spline.outward_normal(u);
-              const double ds = spline.derivative(u).norm() * du * gauss.weight(q);
+              const double       ds =
+                spline.derivative(u).norm() * du * gauss.weight(q);
               const Point<2> st = grid.local_coordinates(x, piece.cell);
 
               // For a roller, all products are taken along n only.
@@ -140,8 +143,9 @@ namespace bsmpm
 
               // Reaction of the previous steps: the stress of the curve's
               // points, interpolated along the segment.
-              const double f     = (u - range[0]) / (range[1] - range[0]);
-              const Voigt  sigma = (1 - f) * curve.stresses[k0] + f * curve.stresses[k1];
+              const double f = (u - range[0]) / (range[1] - range[0]);
+              const Voigt  sigma =
+                (1 - f) * curve.stresses[k0] + f * curve.stresses[k1];
               const Tensor<1, 2> reaction = project(traction(sigma, nv));
 
               Tensor<1, 2> g;

@@ -86,7 +86,7 @@ namespace bsmpm
 
   void
   OutputWriter::write_atomically(
-    const std::string &                          path,
+    const std::string                         &path,
     const std::function<void(std::ostream &)> &writer)
   {
     const std::string temporary = path + ".tmp";
@@ -109,7 +109,7 @@ namespace bsmpm
 
   void
   OutputWriter::write_root_file(
-    const std::string &                          file,
+    const std::string                         &file,
     const std::function<void(std::ostream &)> &writer) const
   {
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -120,15 +120,14 @@ namespace bsmpm
 
   template <int dim>
   void
-  OutputWriter::write_series(const std::string &              series,
-                             const unsigned int               step,
-                             const double                     time,
+  OutputWriter::write_series(const std::string              &series,
+                             const unsigned int              step,
+                             const double                    time,
                              const DataOutInterface<dim, 2> &data)
   {
-    const unsigned int rank = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    const std::string  base =
-      series + "-" + Utilities::int_to_string(step, 4);
+    const std::string  base = series + "-" + Utilities::int_to_string(step, 4);
 
     const auto piece = [&base](const unsigned int r) {
       return base + "." + Utilities::int_to_string(r) + ".vtu";
@@ -151,9 +150,9 @@ namespace bsmpm
 
   void
   OutputWriter::write_serial_series(
-    const std::string &                          series,
-    const unsigned int                           step,
-    const double                                 time,
+    const std::string                         &series,
+    const unsigned int                         step,
+    const double                               time,
     const std::function<void(std::ostream &)> &writer)
   {
     const std::string file =

@@ -15,8 +15,8 @@ namespace bsmpm
 
 
   Q1CellKernel::Q1CellKernel(const FiniteElement<2> &fe,
-                             const Tensor<1, 2> &    cell_size,
-                             const Tensor<2, 3> &    C)
+                             const Tensor<1, 2>     &cell_size,
+                             const Tensor<2, 3>     &C)
   {
     AssertThrow(fe.n_dofs_per_cell() == dofs_per_cell && fe.n_components() == 2,
                 ExcMessage("Q1CellKernel needs FESystem(FE_Q(1), 2)."));
@@ -42,7 +42,9 @@ namespace bsmpm
       }
 
     // X^T C Y for 3x8 arrays X, Y.
-    const auto product = [&C](const auto &X, const auto &Y, const unsigned int i,
+    const auto product = [&C](const auto        &X,
+                              const auto        &Y,
+                              const unsigned int i,
                               const unsigned int j) {
       double sum = 0;
       for (unsigned int p = 0; p < 3; ++p)
@@ -55,11 +57,11 @@ namespace bsmpm
         {
           const unsigned int ij = i * dofs_per_cell + j;
           blocks[0][ij]         = product(B0, B0, i, j);
-          blocks[1][ij] = product(B0, Bs, i, j) + product(Bs, B0, i, j);
-          blocks[2][ij] = product(B0, Bt, i, j) + product(Bt, B0, i, j);
-          blocks[3][ij] = product(Bs, Bs, i, j);
-          blocks[4][ij] = product(Bt, Bt, i, j);
-          blocks[5][ij] = product(Bs, Bt, i, j) + product(Bt, Bs, i, j);
+          blocks[1][ij]         = product(B0, Bs, i, j) + product(Bs, B0, i, j);
+          blocks[2][ij]         = product(B0, Bt, i, j) + product(Bt, B0, i, j);
+          blocks[3][ij]         = product(Bs, Bs, i, j);
+          blocks[4][ij]         = product(Bt, Bt, i, j);
+          blocks[5][ij]         = product(Bs, Bt, i, j) + product(Bt, Bs, i, j);
         }
   }
 
@@ -101,7 +103,7 @@ namespace bsmpm
   Q1CellKernel::add_stiffness(const CellMoments &m, FullMatrix<double> &K) const
   {
     const std::array<double, 6> w = {{m.v, m.vs, m.vt, m.vss, m.vtt, m.vst}};
-    double *                    k = &K(0, 0);
+    double                     *k = &K(0, 0);
     for (unsigned int ij = 0; ij < dofs_per_cell * dofs_per_cell; ++ij)
       k[ij] += w[0] * blocks[0][ij] + w[1] * blocks[1][ij] +
                w[2] * blocks[2][ij] + w[3] * blocks[3][ij] +
@@ -112,7 +114,7 @@ namespace bsmpm
 
   void
   Q1CellKernel::add_internal_force(const CellMoments &m,
-                                   Vector<double> &   f) const
+                                   Vector<double>    &f) const
   {
     for (unsigned int i = 0; i < dofs_per_cell; ++i)
       {
@@ -127,9 +129,9 @@ namespace bsmpm
 
 
   void
-  Q1CellKernel::add_body_force(const CellMoments &m,
+  Q1CellKernel::add_body_force(const CellMoments  &m,
                                const Tensor<1, 2> &body_force,
-                               Vector<double> &    f) const
+                               Vector<double>     &f) const
   {
     // sum_p V_p N_v(s_p, t_p) for the bilinear N_v, from the moments.
     const std::array<double, 4> weight = {

@@ -61,7 +61,10 @@ namespace bsmpm
                       "with the body and whose displacement is reported as "
                       "quantities <name>_displacement_x, _y and "
                       "<name>_deflection (= -displacement_y); empty: none.");
-    prm.declare_entry("Name", "probe", Patterns::Anything(), "Name of the probe.");
+    prm.declare_entry("Name",
+                      "probe",
+                      Patterns::Anything(),
+                      "Name of the probe.");
     prm.leave_subsection();
 
     BackgroundGrid::declare_parameters(prm);
@@ -150,9 +153,9 @@ namespace bsmpm
       setup_system();
     }
 
-    run_summary.scene             = scene_name;
-    run_summary.n_cells           = grid.triangulation().n_global_active_cells();
-    run_summary.n_dofs            = grid.dof_handler().n_dofs();
+    run_summary.scene   = scene_name;
+    run_summary.n_cells = grid.triangulation().n_global_active_cells();
+    run_summary.n_dofs  = grid.dof_handler().n_dofs();
     run_summary.n_material_points = points.n_global_material_points();
     run_summary.n_tracking_points =
       points.particle_handler().n_global_particles() -
@@ -201,12 +204,17 @@ namespace bsmpm
     std::vector<bool> supporting(grid.triangulation().n_active_cells(), false);
     if (!boundary_curves.empty())
       {
-        implicit_boundary.mark_supporting_cells(boundary_curves, grid, supporting);
-        nitsche_boundary.mark_supporting_cells(boundary_curves, grid, supporting);
+        implicit_boundary.mark_supporting_cells(boundary_curves,
+                                                grid,
+                                                supporting);
+        nitsche_boundary.mark_supporting_cells(boundary_curves,
+                                               grid,
+                                               supporting);
       }
     LinearAlgebra::distributed::Vector<double> support(
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), communicator);
-    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
     n_active_cells = 0;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned() &&
@@ -242,14 +250,14 @@ namespace bsmpm
   Scene::fit_prescribed_displacement(const double increment_factor)
   {
     TimerOutput::Scope t(timer, "prescribed displacement fit");
-    const double       misfit = implicit_boundary.fit_prescribed_displacement(
-      boundary_curves,
-      grid,
-      *kernel,
-      exact_solution.get(),
-      increment_factor,
-      fit_matrix,
-      prescribed);
+    const double       misfit =
+      implicit_boundary.fit_prescribed_displacement(boundary_curves,
+                                                    grid,
+                                                    *kernel,
+                                                    exact_solution.get(),
+                                                    increment_factor,
+                                                    fit_matrix,
+                                                    prescribed);
     // The fit is linear in u^a: report the misfit of u^a itself.
     run_summary.quantities["boundary_fit_error"] = misfit / increment_factor;
   }
@@ -257,7 +265,8 @@ namespace bsmpm
 
 
   void
-  Scene::assemble_system(const double load_factor, const double increment_factor)
+  Scene::assemble_system(const double load_factor,
+                         const double increment_factor)
   {
     timer.enter_subsection("assembly");
     system_matrix = 0;
@@ -266,12 +275,13 @@ namespace bsmpm
     const Tensor<1, 2> body_force = load_factor * material.density() * gravity;
     const bool         has_body_force = body_force.norm() > 0;
 
-    FullMatrix<double>                   cell_matrix(Q1CellKernel::dofs_per_cell,
+    FullMatrix<double> cell_matrix(Q1CellKernel::dofs_per_cell,
                                    Q1CellKernel::dofs_per_cell);
-    Vector<double>                       cell_rhs(Q1CellKernel::dofs_per_cell);
-    Vector<double>                       internal(Q1CellKernel::dofs_per_cell);
-    Vector<double>                       da(Q1CellKernel::dofs_per_cell);
-    std::vector<types::global_dof_index> dof_indices(Q1CellKernel::dofs_per_cell);
+    Vector<double>     cell_rhs(Q1CellKernel::dofs_per_cell);
+    Vector<double>     internal(Q1CellKernel::dofs_per_cell);
+    Vector<double>     da(Q1CellKernel::dofs_per_cell);
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
@@ -357,8 +367,10 @@ namespace bsmpm
     TimerOutput::Scope            t(timer, "solve");
     TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
                                            communicator);
-    const auto                    report =
-      linear_solver.solve(system_matrix, solution, system_rhs, grid.dof_handler());
+    const auto                    report = linear_solver.solve(system_matrix,
+                                            solution,
+                                            system_rhs,
+                                            grid.dof_handler());
     constraints.distribute(solution);
 
     for (const auto i : grid.locally_owned_dofs())
@@ -373,22 +385,23 @@ namespace bsmpm
   Scene::move_points(const unsigned int step)
   {
     TimerOutput::Scope t(timer, "update points");
-    const bool ibm = boundary_curves.has_supports(
+    const bool         ibm = boundary_curves.has_supports(
       BoundaryCurve::DirichletMethod::implicit_boundary);
     if (ibm)
       {
         band_cells.assign(grid.triangulation().n_active_cells(), false);
         implicit_boundary.mark_band_cells(boundary_curves, grid, band_cells);
       }
-    const auto report = points.move(
-      *kernel,
-      material,
-      increment,
-      has_prescribed ? &prescribed : nullptr,
-      ibm ? &band_cells : nullptr,
-      [this](const Point<2> &x, Tensor<1, 2> &w) {
-        return implicit_boundary.support_displacement(boundary_curves, grid, x, w);
-      });
+    const auto report =
+      points.move(*kernel,
+                  material,
+                  increment,
+                  has_prescribed ? &prescribed : nullptr,
+                  ibm ? &band_cells : nullptr,
+                  [this](const Point<2> &x, Tensor<1, 2> &w) {
+                    return implicit_boundary.support_displacement(
+                      boundary_curves, grid, x, w);
+                  });
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
@@ -429,7 +442,8 @@ namespace bsmpm
     std::vector<DataComponentInterpretation::DataComponentInterpretation>
       vector_field(2, DataComponentInterpretation::component_is_part_of_vector);
     grid_out.add_data_vector(increment,
-                             std::vector<std::string>(2, "displacement_increment"),
+                             std::vector<std::string>(2,
+                                                      "displacement_increment"),
                              DataOut<2>::type_dof_data,
                              vector_field);
     Vector<float> fill(grid.triangulation().n_active_cells());
@@ -439,7 +453,7 @@ namespace bsmpm
       if (cell->is_locally_owned())
         {
           const unsigned int c = cell->active_cell_index();
-          fill[c]      = cell_moments.empty() ? 0. : cell_moments[c].v / cell_area;
+          fill[c] = cell_moments.empty() ? 0. : cell_moments[c].v / cell_area;
           subdomain[c] = cell->subdomain_id();
         }
     grid_out.add_data_vector(fill, "material_fraction");
@@ -467,8 +481,11 @@ namespace bsmpm
         std::vector<double> local;
         for (const auto &g : neumann_loads.quadrature_points())
           local.insert(local.end(),
-                       {g.position[0], g.position[1], g.traction[0],
-                        g.traction[1], g.weight});
+                       {g.position[0],
+                        g.position[1],
+                        g.traction[0],
+                        g.traction[1],
+                        g.weight});
         std::vector<NeumannLoads::QuadraturePoint> gauss;
         for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
           for (std::size_t i = 0; i + 4 < part.size(); i += 5)
@@ -484,18 +501,14 @@ namespace bsmpm
           for (std::size_t i = 0; i + 3 < part.size(); i += 4)
             band.push_back(
               {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3]});
-        output.write_serial_series("curves", step, load_factor,
-                                   [this](std::ostream &out) {
-                                     CurveOutput::write_curves(out,
-                                                               boundary_curves);
-                                   });
-        output.write_serial_series("curve_points", step, load_factor,
-                                   [&](std::ostream &out) {
-                                     CurveOutput::write_points(out,
-                                                               boundary_curves,
-                                                               gauss,
-                                                               band);
-                                   });
+        output.write_serial_series(
+          "curves", step, load_factor, [this](std::ostream &out) {
+            CurveOutput::write_curves(out, boundary_curves);
+          });
+        output.write_serial_series(
+          "curve_points", step, load_factor, [&](std::ostream &out) {
+            CurveOutput::write_points(out, boundary_curves, gauss, band);
+          });
       }
 
     output.write_collections();
@@ -508,7 +521,8 @@ namespace bsmpm
   {
     TimerOutput::Scope t(timer, "errors");
     run_summary.errors = compute_errors(points, *exact_solution, communicator);
-    if (const auto lame = dynamic_cast<const LameCylinder *>(exact_solution.get()))
+    if (const auto lame =
+          dynamic_cast<const LameCylinder *>(exact_solution.get()))
       for (const auto &[name, value] :
            compute_radius_errors(boundary_curves, *lame))
         run_summary.quantities[name] = value;
@@ -603,7 +617,8 @@ namespace bsmpm
       run_summary.print_results(pcout.get_stream());
 
     std::map<std::string, double> checked = run_summary.errors;
-    checked.insert(run_summary.quantities.begin(), run_summary.quantities.end());
+    checked.insert(run_summary.quantities.begin(),
+                   run_summary.quantities.end());
     std::ostringstream verification_log;
     const auto         failed = verification.check(checked, verification_log);
     pcout << verification_log.str();

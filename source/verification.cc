@@ -64,7 +64,7 @@ namespace bsmpm
 
   std::vector<std::string>
   Verification::check(const std::map<std::string, double> &values,
-                      std::ostream &                       out) const
+                      std::ostream                        &out) const
   {
     std::vector<std::string> failed;
     if (!bounds.empty())
@@ -82,9 +82,9 @@ namespace bsmpm
           }
         else
           {
-            const bool ok = std::isfinite(it->second) &&
-                            (b.upper ? it->second <= b.value :
-                                       it->second >= b.value);
+            const bool ok =
+              std::isfinite(it->second) &&
+              (b.upper ? it->second <= b.value : it->second >= b.value);
             line << (ok ? "passed" : "FAILED");
             if (!ok)
               {

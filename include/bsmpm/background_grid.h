@@ -131,7 +131,8 @@ namespace bsmpm
 
     /** Local coordinates of @p p in the cell with index @p ij. */
     Point<2>
-    local_coordinates(const Point<2> &p, const std::array<unsigned int, 2> &ij) const
+    local_coordinates(const Point<2>                    &p,
+                      const std::array<unsigned int, 2> &ij) const
     {
       return Point<2>((p[0] - corner_lower[0]) / h[0] - ij[0],
                       (p[1] - corner_lower[1]) / h[1] - ij[1]);

@@ -110,22 +110,22 @@ namespace bsmpm
       nitsche
     };
 
-    std::string                        name;
+    std::string     name;
     DirichletMethod dirichlet_method = DirichletMethod::implicit_boundary;
-    bool                               closed = false;
-    std::vector<unsigned int>          corners;
-    std::vector<CurveCondition>        conditions;
-    bool                               trims_material_points = false;
-    bool                               halve_point_volumes   = false;
+    bool            closed           = false;
+    std::vector<unsigned int>   corners;
+    std::vector<CurveCondition> conditions;
+    bool                        trims_material_points = false;
+    bool                        halve_point_volumes   = false;
     /** Slots of the chain's points in MaterialPoints' tracked list. */
-    std::vector<unsigned int>          tracked_slots;
-    std::vector<Point<2>>              positions;
+    std::vector<unsigned int> tracked_slots;
+    std::vector<Point<2>>     positions;
     /** Positions of the points at the start of the run. */
-    std::vector<Point<2>>              initial_positions;
+    std::vector<Point<2>> initial_positions;
     /** Stresses of the points (Voigt), as of the last load step. */
-    std::vector<Voigt>                 stresses;
-    std::unique_ptr<BSplineCurve>      spline;
-    std::vector<CurvePiece>            pieces;
+    std::vector<Voigt>            stresses;
+    std::unique_ptr<BSplineCurve> spline;
+    std::vector<CurvePiece>       pieces;
 
     unsigned int
     n_segments() const
@@ -223,8 +223,8 @@ namespace bsmpm
     /** How the points of a curve are given. */
     struct Source
     {
-      std::string           kind; // region edge | coordinates | file |
-                                  // material points
+      std::string kind; // region edge | coordinates | file |
+                        // material points
       std::string           edge;
       unsigned int          n_points = 0;
       std::vector<Point<2>> positions; // for the first three
@@ -242,7 +242,7 @@ namespace bsmpm
 
     /** Per grid cell (row-major): 0 unknown, 1 kept, 2 trimmed, 3 cut by a
      * trimming curve; filled lazily by trims(). */
-    const BackgroundGrid *             trimming_grid = nullptr;
+    const BackgroundGrid              *trimming_grid = nullptr;
     mutable std::vector<unsigned char> trimming_state;
   };
 } // namespace bsmpm

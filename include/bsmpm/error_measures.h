@@ -27,7 +27,7 @@ namespace bsmpm
    */
   std::map<std::string, double>
   compute_errors(const MaterialPoints &points,
-                 const ExactSolution & exact,
+                 const ExactSolution  &exact,
                  const MPI_Comm        communicator);
 
   /**

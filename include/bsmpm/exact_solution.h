@@ -67,9 +67,9 @@ namespace bsmpm
      * section (used by the column).
      */
     static std::unique_ptr<ExactSolution>
-    create(ParameterHandler &           prm,
+    create(ParameterHandler            &prm,
            const LinearElasticMaterial &material,
-           const Tensor<1, 2> &         gravity);
+           const Tensor<1, 2>          &gravity);
   };
 
 
@@ -102,9 +102,9 @@ namespace bsmpm
   {
   public:
     ConstantStress(const LinearElasticMaterial &material,
-                   const Voigt &                stress_in_frame,
+                   const Voigt                 &stress_in_frame,
                    const double                 angle,
-                   const Point<2> &             fixed_point);
+                   const Point<2>              &fixed_point);
     Tensor<1, 2>
     displacement(const Point<2> &X) const override;
     SymmetricTensor<2, 2>
@@ -126,7 +126,7 @@ namespace bsmpm
     /** If @p inner_displacement is positive, the pressure is the one that
      * moves the inner radius outwards by that much. */
     LameCylinder(const LinearElasticMaterial &material,
-                 const Point<2> &             center,
+                 const Point<2>              &center,
                  const double                 inner_radius,
                  const double                 outer_radius,
                  const double                 pressure,
@@ -167,7 +167,7 @@ namespace bsmpm
   {
   public:
     KirschPlate(const LinearElasticMaterial &material,
-                const Point<2> &             center,
+                const Point<2>              &center,
                 const double                 hole_radius,
                 const double                 far_field_stress);
     Tensor<1, 2>

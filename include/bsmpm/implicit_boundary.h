@@ -82,7 +82,7 @@ namespace bsmpm
     void
     mark_supporting_cells(const BoundaryCurves &curves,
                           const BackgroundGrid &grid,
-                          std::vector<bool> &   cells) const;
+                          std::vector<bool>    &cells) const;
 
     /**
      * Sets @p cells[c] for every locally owned cell crossed by an IBM
@@ -91,7 +91,7 @@ namespace bsmpm
     void
     mark_band_cells(const BoundaryCurves &curves,
                     const BackgroundGrid &grid,
-                    std::vector<bool> &   cells) const;
+                    std::vector<bool>    &cells) const;
 
     /**
      * Adds the band terms k2 + k2^T + k3 of all IBM supports on locally owned
@@ -99,14 +99,14 @@ namespace bsmpm
      * the band part of -f^d to @p rhs.
      */
     void
-    assemble(const BoundaryCurves &                              curves,
-             const BackgroundGrid &                              grid,
-             const Q1CellKernel &                                kernel,
-             const Tensor<2, 3> &                                C,
-             const LinearAlgebra::distributed::Vector<double> *  prescribed,
-             const AffineConstraints<double> &                   constraints,
-             TrilinosWrappers::SparseMatrix &                    matrix,
-             TrilinosWrappers::MPI::Vector &                     rhs);
+    assemble(const BoundaryCurves                             &curves,
+             const BackgroundGrid                             &grid,
+             const Q1CellKernel                               &kernel,
+             const Tensor<2, 3>                               &C,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const AffineConstraints<double>                  &constraints,
+             TrilinosWrappers::SparseMatrix                   &matrix,
+             TrilinosWrappers::MPI::Vector                    &rhs);
 
     /** Whether any IBM support prescribes a displacement. */
     static bool
@@ -121,12 +121,12 @@ namespace bsmpm
      */
     double
     fit_prescribed_displacement(
-      const BoundaryCurves &                      curves,
-      const BackgroundGrid &                      grid,
-      const Q1CellKernel &                        kernel,
-      const ExactSolution *                       exact,
+      const BoundaryCurves                       &curves,
+      const BackgroundGrid                       &grid,
+      const Q1CellKernel                         &kernel,
+      const ExactSolution                        *exact,
       const double                                factor,
-      TrilinosWrappers::SparseMatrix &            mass,
+      TrilinosWrappers::SparseMatrix             &mass,
       LinearAlgebra::distributed::Vector<double> &prescribed) const;
 
     /**
@@ -137,8 +137,8 @@ namespace bsmpm
     double
     support_displacement(const BoundaryCurves &curves,
                          const BackgroundGrid &grid,
-                         const Point<2> &      x,
-                         Tensor<1, 2> &        w) const;
+                         const Point<2>       &x,
+                         Tensor<1, 2>         &w) const;
 
     const std::vector<BandPoint> &
     band_points() const
@@ -150,8 +150,8 @@ namespace bsmpm
     /** The value of u^a of @p condition at @p x. */
     static Tensor<1, 2>
     prescribed_value(const CurveCondition &condition,
-                     const ExactSolution * exact,
-                     const Point<2> &      x);
+                     const ExactSolution  *exact,
+                     const Point<2>       &x);
 
     double       relative_band_width = 1e-6;
     unsigned int points_along        = 2;

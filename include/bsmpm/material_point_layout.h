@@ -52,8 +52,8 @@ namespace bsmpm
     /** Calls @p f(position, volume) for every material point, in order. */
     void
     for_each_point(
-      const BackgroundGrid &                                   grid,
-      const BodyRegion &                                       region,
+      const BackgroundGrid                                &grid,
+      const BodyRegion                                    &region,
       const std::function<void(const Point<2> &, double)> &f) const;
 
     Kind
@@ -63,9 +63,9 @@ namespace bsmpm
     }
 
   private:
-    Kind         layout         = Kind::per_cell;
-    unsigned int points_per_cell = 2;
-    std::array<unsigned int, 2> lattice_points = {{1, 1}};
+    Kind                        layout          = Kind::per_cell;
+    unsigned int                points_per_cell = 2;
+    std::array<unsigned int, 2> lattice_points  = {{1, 1}};
     std::string                 lattice_lower_left, lattice_upper_right;
     std::array<unsigned int, 2> polar_points = {{1, 1}};
   };

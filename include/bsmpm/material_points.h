@@ -65,8 +65,8 @@ namespace bsmpm
      * outside the grid or if the region holds no point.
      */
     void
-    generate(const MaterialPointLayout &                   layout,
-             const BodyRegion &                            region,
+    generate(const MaterialPointLayout                   &layout,
+             const BodyRegion                            &region,
              const std::function<bool(const Point<2> &)> &excluded = {});
 
     /**
@@ -122,12 +122,12 @@ namespace bsmpm
      * sort_into_cells().
      */
     MoveReport
-    move(const Q1CellKernel &                              kernel,
-         const LinearElasticMaterial &                     material,
+    move(const Q1CellKernel                               &kernel,
+         const LinearElasticMaterial                      &material,
          const LinearAlgebra::distributed::Vector<double> &increment,
          const LinearAlgebra::distributed::Vector<double> *prescribed = nullptr,
-         const std::vector<bool> *                         support_cells = nullptr,
-         const SupportFunction &                           support       = {});
+         const std::vector<bool> *support_cells                       = nullptr,
+         const SupportFunction   &support                             = {});
 
     /** Finds the cell and owner of every point after move(). */
     void
@@ -162,7 +162,7 @@ namespace bsmpm
      * given to track(), on every process. */
     void
     tracked_states(std::vector<Point<2>> &positions,
-                   std::vector<Voigt> &   stresses) const;
+                   std::vector<Voigt>    &stresses) const;
 
     /** Property names and interpretations for Particles::DataOut. */
     static std::vector<std::string>
@@ -171,17 +171,17 @@ namespace bsmpm
   private:
     /** Inserts one point if its cell is locally owned. */
     void
-    insert(const Point<2> &             position,
-           const double                 volume,
-           const types::particle_index  id);
+    insert(const Point<2>             &position,
+           const double                volume,
+           const types::particle_index id);
 
     /** Records position and stress of a point if it is tracked. */
     void
-    record_if_tracked(const types::particle_index  id,
-                      const Point<2> &             x,
+    record_if_tracked(const types::particle_index   id,
+                      const Point<2>               &x,
                       const ArrayView<const double> properties);
 
-    const BackgroundGrid &        grid;
+    const BackgroundGrid         &grid;
     Particles::ParticleHandler<2> particles;
     types::particle_index         n_material_points = 0;
     types::particle_index         next_id           = 0;

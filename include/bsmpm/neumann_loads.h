@@ -45,13 +45,13 @@ namespace bsmpm
      * on the locally owned cells. @p exact is needed for "exact traction".
      */
     void
-    assemble(const BoundaryCurves &           curves,
-             const BackgroundGrid &           grid,
-             const Q1CellKernel &             kernel,
-             const ExactSolution *            exact,
+    assemble(const BoundaryCurves            &curves,
+             const BackgroundGrid            &grid,
+             const Q1CellKernel              &kernel,
+             const ExactSolution             *exact,
              const double                     load_factor,
              const AffineConstraints<double> &constraints,
-             TrilinosWrappers::MPI::Vector &  rhs);
+             TrilinosWrappers::MPI::Vector   &rhs);
 
     /** The Gauss points of the last assemble() on this process. */
     const std::vector<QuadraturePoint> &

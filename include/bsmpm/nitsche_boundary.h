@@ -46,7 +46,7 @@ namespace bsmpm
     void
     mark_supporting_cells(const BoundaryCurves &curves,
                           const BackgroundGrid &grid,
-                          std::vector<bool> &   cells) const;
+                          std::vector<bool>    &cells) const;
 
     /**
      * Adds the Nitsche terms of all Nitsche supports on locally owned cells.
@@ -54,15 +54,15 @@ namespace bsmpm
      * increment of this step.
      */
     void
-    assemble(const BoundaryCurves &           curves,
-             const BackgroundGrid &           grid,
-             const Q1CellKernel &             kernel,
-             const LinearElasticMaterial &    material,
-             const ExactSolution *            exact,
+    assemble(const BoundaryCurves            &curves,
+             const BackgroundGrid            &grid,
+             const Q1CellKernel              &kernel,
+             const LinearElasticMaterial     &material,
+             const ExactSolution             *exact,
              const double                     increment_factor,
              const AffineConstraints<double> &constraints,
-             TrilinosWrappers::SparseMatrix & matrix,
-             TrilinosWrappers::MPI::Vector &  rhs) const;
+             TrilinosWrappers::SparseMatrix  &matrix,
+             TrilinosWrappers::MPI::Vector   &rhs) const;
 
   private:
     double       penalty        = 100;

@@ -67,19 +67,19 @@ namespace bsmpm
      */
     template <int dim>
     void
-    write_series(const std::string &                series,
-                 const unsigned int                 step,
-                 const double                       time,
-                 const DataOutInterface<dim, 2> &   data);
+    write_series(const std::string              &series,
+                 const unsigned int              step,
+                 const double                    time,
+                 const DataOutInterface<dim, 2> &data);
 
     /**
      * Writes a .vtu file that only process 0 produces (such as the curves)
      * and records it in the collections.
      */
     void
-    write_serial_series(const std::string &                          series,
-                        const unsigned int                           step,
-                        const double                                 time,
+    write_serial_series(const std::string                         &series,
+                        const unsigned int                         step,
+                        const double                               time,
                         const std::function<void(std::ostream &)> &writer);
 
     /** Rewrites the .pvd collections (process 0 only). */
@@ -89,12 +89,12 @@ namespace bsmpm
     /** Writes @p writer's output to @p file in the output directory
      * atomically (process 0 only). */
     void
-    write_root_file(const std::string &                          file,
+    write_root_file(const std::string                         &file,
                     const std::function<void(std::ostream &)> &writer) const;
 
     /** Writes to @p path through a temporary file renamed at the end. */
     static void
-    write_atomically(const std::string &                          path,
+    write_atomically(const std::string                         &path,
                      const std::function<void(std::ostream &)> &writer);
 
   private:

@@ -3,7 +3,9 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+
 #include <deal.II/fe/fe.h>
+
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -68,8 +70,8 @@ namespace bsmpm
      * from it. @p C is the Voigt stiffness of the material.
      */
     Q1CellKernel(const FiniteElement<2> &fe,
-                 const Tensor<1, 2> &    cell_size,
-                 const Tensor<2, 3> &    C);
+                 const Tensor<1, 2>     &cell_size,
+                 const Tensor<2, 3>     &C);
 
     /** Bilinear shape values of the four vertices (lexicographic order). */
     static std::array<double, 4>
@@ -119,9 +121,9 @@ namespace bsmpm
 
     /** f += sum_p V_p N_p^T b for a uniform body force b per unit volume. */
     void
-    add_body_force(const CellMoments &m,
+    add_body_force(const CellMoments  &m,
                    const Tensor<1, 2> &body_force,
-                   Vector<double> &    f) const;
+                   Vector<double>     &f) const;
 
     /**
      * The strain of the local displacements @p d is affine in the cell:

@@ -97,21 +97,21 @@ namespace bsmpm
     mutable TimerOutput timer;
     Timer               total_timer;
 
-    std::string         scene_name;
-    unsigned int        n_load_steps = 1;
-    Tensor<1, 2>        gravity;
-    BackgroundGrid      grid;
-    LinearElasticMaterial material;
-    BodyRegion          region;
-    MaterialPointLayout layout;
-    MaterialPoints      points;
-    BoundaryCurves      boundary_curves;
-    NeumannLoads        neumann_loads;
-    ImplicitBoundary    implicit_boundary;
-    NitscheBoundary     nitsche_boundary;
-    LinearSolver        linear_solver;
-    OutputWriter        output;
-    Verification        verification;
+    std::string                    scene_name;
+    unsigned int                   n_load_steps = 1;
+    Tensor<1, 2>                   gravity;
+    BackgroundGrid                 grid;
+    LinearElasticMaterial          material;
+    BodyRegion                     region;
+    MaterialPointLayout            layout;
+    MaterialPoints                 points;
+    BoundaryCurves                 boundary_curves;
+    NeumannLoads                   neumann_loads;
+    ImplicitBoundary               implicit_boundary;
+    NitscheBoundary                nitsche_boundary;
+    LinearSolver                   linear_solver;
+    OutputWriter                   output;
+    Verification                   verification;
     std::unique_ptr<ExactSolution> exact_solution;
     std::unique_ptr<Q1CellKernel>  kernel;
 
@@ -124,16 +124,16 @@ namespace bsmpm
     bool                                       has_prescribed = false;
     TrilinosWrappers::SparseMatrix             fit_matrix;
     /** Locally owned cells crossed by an IBM support band. */
-    std::vector<bool> band_cells;
-    std::vector<CellMoments>                   cell_moments;
-    unsigned int                               n_active_cells = 0;
+    std::vector<bool>        band_cells;
+    std::vector<CellMoments> cell_moments;
+    unsigned int             n_active_cells = 0;
     /** Locally owned DoFs that no cell with material touches. */
     std::vector<types::global_dof_index> unsupported_dofs;
 
     /** An optional zero-volume point whose displacement is reported. */
-    std::string probe_name;
-    Point<2>    probe_position;
-    bool        has_probe  = false;
+    std::string  probe_name;
+    Point<2>     probe_position;
+    bool         has_probe  = false;
     unsigned int probe_slot = 0;
 
     RunSummary run_summary;
