@@ -74,10 +74,15 @@ namespace bsmpm
 
   void
   MaterialPointLayout::for_each_point(
-    const BackgroundGrid                                &grid,
-    const BodyRegion                                    &region,
-    const std::function<void(const Point<2> &, double)> &f) const
+    const BackgroundGrid                         &grid,
+    const BodyRegion                             &region,
+    const std::function<bool(const CellIndex &)> &wanted_cell,
+    const std::function<void(const Point<2> &, double, unsigned long)> &f) const
   {
+    // For layouts not tied to cells: skip points in unwanted cells.
+    const auto wanted_point = [&](const Point<2> &p) {
+      return !grid.contains(p) || wanted_cell(grid.cell_index(p));
+    };
     switch (layout)
       {
         case Kind::per_cell:
@@ -88,14 +93,19 @@ namespace bsmpm
             for (unsigned int j = 0; j < grid.n_cells(1); ++j)
               for (unsigned int i = 0; i < grid.n_cells(0); ++i)
                 {
-                  const Point<2> origin = grid.cell_origin({{i, j}});
+                  if (!wanted_cell({{i, j}}))
+                    continue;
+                  const Point<2>      origin = grid.cell_origin({{i, j}});
+                  const unsigned long first =
+                    (static_cast<unsigned long>(j) * grid.n_cells(0) + i) * n *
+                    n;
                   for (unsigned int b = 0; b < n; ++b)
                     for (unsigned int a = 0; a < n; ++a)
                       {
                         const Point<2> p(origin[0] + (a + 0.5) * h[0] / n,
                                          origin[1] + (b + 0.5) * h[1] / n);
                         if (region.contains(p))
-                          f(p, volume);
+                          f(p, volume, first + b * n + a);
                       }
                 }
             break;
@@ -126,8 +136,10 @@ namespace bsmpm
                 {
                   const Point<2> p(lower[0] + (i + 0.5) * dx,
                                    lower[1] + (j + 0.5) * dy);
-                  if (region.contains(p))
-                    f(p, dx * dy);
+                  if (region.contains(p) && wanted_point(p))
+                    f(p,
+                      dx * dy,
+                      static_cast<unsigned long>(j) * lattice_points[0] + i);
                 }
             break;
           }
@@ -144,6 +156,8 @@ namespace bsmpm
             for (unsigned int j = 0; j < grid.n_cells(1); ++j)
               for (unsigned int i = 0; i < grid.n_cells(0); ++i)
                 {
+                  if (!wanted_cell({{i, j}}))
+                    continue;
                   // Clip the cell by each side of the convex body
                   // (Sutherland-Hodgman), then take area and centroid.
                   const Point<2>        o       = grid.cell_origin({{i, j}});
@@ -184,7 +198,9 @@ namespace bsmpm
                       centroid += a / 6 * (p + q);
                     }
                   if (area > 1e-12 * h[0] * h[1])
-                    f(centroid / area, area);
+                    f(centroid / area,
+                      area,
+                      static_cast<unsigned long>(j) * grid.n_cells(0) + i);
                 }
             break;
           }
@@ -202,15 +218,39 @@ namespace bsmpm
             for (unsigned int j = 0; j < polar_points[1]; ++j)
               for (unsigned int i = 0; i < polar_points[0]; ++i)
                 {
-                  const double r0 = s.inner_radius + i * dr, r1 = r0 + dr;
-                  const double r     = (r0 + r1) / 2;
-                  const double theta = s.start_angle + (j + 0.5) * dtheta;
-                  f(Point<2>(s.center[0] + r * std::cos(theta),
-                             s.center[1] + r * std::sin(theta)),
-                    (r1 * r1 - r0 * r0) / 2 * dtheta);
+                  const double   r0 = s.inner_radius + i * dr, r1 = r0 + dr;
+                  const double   r     = (r0 + r1) / 2;
+                  const double   theta = s.start_angle + (j + 0.5) * dtheta;
+                  const Point<2> p(s.center[0] + r * std::cos(theta),
+                                   s.center[1] + r * std::sin(theta));
+                  if (wanted_point(p))
+                    f(p,
+                      (r1 * r1 - r0 * r0) / 2 * dtheta,
+                      static_cast<unsigned long>(j) * polar_points[0] + i);
                 }
             break;
           }
       }
+  }
+
+
+  unsigned long
+  MaterialPointLayout::n_candidates(const BackgroundGrid &grid) const
+  {
+    const unsigned long cells =
+      static_cast<unsigned long>(grid.n_cells(0)) * grid.n_cells(1);
+    switch (layout)
+      {
+        case Kind::per_cell:
+          return cells * points_per_cell * points_per_cell;
+        case Kind::lattice:
+          return static_cast<unsigned long>(lattice_points[0]) *
+                 lattice_points[1];
+        case Kind::polar:
+          return static_cast<unsigned long>(polar_points[0]) * polar_points[1];
+        case Kind::cell_centroid:
+          return cells;
+      }
+    return 0;
   }
 } // namespace bsmpm

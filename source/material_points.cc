@@ -29,7 +29,7 @@ namespace bsmpm
 
 
 
-  void
+  bool
   MaterialPoints::insert(const Point<2>             &position,
                          const double                volume,
                          const types::particle_index id)
@@ -43,7 +43,7 @@ namespace bsmpm
     const auto ij   = grid.cell_index(position);
     const auto cell = grid.locally_owned_cell(ij);
     if (cell == grid.dof_handler().end())
-      return;
+      return false;
 
     std::array<double, Property::n_properties> properties{};
     properties[Property::volume]               = volume;
@@ -56,6 +56,7 @@ namespace bsmpm
                               cell,
                               ArrayView<const double>(properties.data(),
                                                       properties.size()));
+    return true;
   }
 
 
@@ -69,14 +70,26 @@ namespace bsmpm
     particles.initialize(grid.triangulation(),
                          grid.mapping(),
                          Property::n_properties);
-    next_id = 0;
-    // Every process walks the whole layout, so that ids do not depend on the
-    // partition, and keeps the points of its own cells.
-    layout.for_each_point(grid, region, [&](const Point<2> &p, double volume) {
-      if (!excluded || !excluded(p))
-        insert(p, volume, next_id++);
-    });
-    n_material_points = next_id;
+    // Each process creates the points of its own cells, with the index of
+    // the layout's enumeration as id: unique and partition-independent.
+    next_id = layout.n_candidates(grid);
+    // Room for this process' share at once: growing the storage point by
+    // point costs more than the insertion itself.
+    const unsigned int n_cells = grid.n_cells(0) * grid.n_cells(1);
+    particles.reserve(next_id / n_cells *
+                      grid.triangulation().n_locally_owned_active_cells());
+    types::particle_index n_here = 0;
+    layout.for_each_point(
+      grid,
+      region,
+      [this](const MaterialPointLayout::CellIndex &ij) {
+        return grid.locally_owned_cell(ij) != grid.dof_handler().end();
+      },
+      [&](const Point<2> &p, const double volume, const unsigned long id) {
+        if (!excluded || !excluded(p))
+          n_here += insert(p, volume, id);
+      });
+    n_material_points = Utilities::MPI::sum(n_here, grid.mpi_communicator());
     AssertThrow(n_material_points > 0,
                 ExcMessage("Material points: the body region holds no "
                            "material point of the chosen layout."));

@@ -30,8 +30,8 @@ namespace bsmpm
    *   constant-stress state is in equilibrium to round-off even in partly
    *   filled cells.
    *
-   * Points come in a fixed global order, the same on every process, so their
-   * index is a partition-independent particle id.
+   * Every candidate point has an index in the layout's enumeration (whether
+   * the body holds it or not): a partition-independent particle id.
    */
   class MaterialPointLayout
   {
@@ -49,12 +49,27 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
-    /** Calls @p f(position, volume) for every material point, in order. */
+    /** Cell index (i, j) of the grid. */
+    using CellIndex = std::array<unsigned int, 2>;
+
+    /**
+     * Calls @p f(position, volume, index) for every point of the layout that
+     * lies in @p region, except points in grid cells for which @p wanted_cell
+     * is false (points outside the grid are always passed on, so that the
+     * caller can reject them).
+     */
     void
     for_each_point(
-      const BackgroundGrid                                &grid,
-      const BodyRegion                                    &region,
-      const std::function<void(const Point<2> &, double)> &f) const;
+      const BackgroundGrid                         &grid,
+      const BodyRegion                             &region,
+      const std::function<bool(const CellIndex &)> &wanted_cell,
+      const std::function<void(const Point<2> &, double, unsigned long)> &f)
+      const;
+
+    /** One more than the largest index for_each_point() can give. */
+    unsigned long
+    n_candidates(const BackgroundGrid &grid) const;
+
 
     Kind
     kind() const

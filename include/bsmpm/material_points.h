@@ -169,8 +169,8 @@ namespace bsmpm
     property_names();
 
   private:
-    /** Inserts one point if its cell is locally owned. */
-    void
+    /** Inserts one point if its cell is locally owned; returns whether. */
+    bool
     insert(const Point<2>             &position,
            const double                volume,
            const types::particle_index id);
