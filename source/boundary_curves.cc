@@ -381,6 +381,10 @@ namespace bsmpm
           {
             curve.positions = source.positions;
             rebuild(curve);
+            AssertThrow(!curve.closed || !curve.spline->is_self_intersecting(),
+                        ExcMessage("Boundary curves/" + curve.name +
+                                   ": the closed curve through the given "
+                                   "points intersects itself."));
           }
       }
 
@@ -535,9 +539,20 @@ namespace bsmpm
                   ExcMessage("Boundary curves/" + curve.name +
                              ": corner index " + std::to_string(corner) +
                              " lies beyond the chain."));
-    curve.spline = std::make_unique<BSplineCurve>(curve.positions,
-                                                  curve.closed,
-                                                  curve.corners);
+    try
+      {
+        curve.spline = std::make_unique<BSplineCurve>(curve.positions,
+                                                      curve.closed,
+                                                      curve.corners);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream message;
+        e.print_info(message);
+        AssertThrow(false,
+                    ExcMessage("Boundary curves/" + curve.name + ": " +
+                               Utilities::trim(message.str())));
+      }
   }
 
 

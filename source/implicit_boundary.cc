@@ -370,7 +370,8 @@ namespace bsmpm
 
     TrilinosWrappers::MPI::Vector  solution(grid.locally_owned_dofs(), comm);
     SolverControl                  control(1, 0);
-    TrilinosWrappers::SolverDirect solver(control);
+    TrilinosWrappers::SolverDirect solver(
+      control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
     solver.solve(mass, solution, rhs);
     constraints.distribute(solution);
 

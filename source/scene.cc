@@ -145,6 +145,7 @@ namespace bsmpm
           boundary_curves.read_initial_positions(points);
         }
     }
+    check_supports();
     {
       TimerOutput::Scope t(timer, "setup: system");
       kernel = std::make_unique<Q1CellKernel>(grid.fe(),
@@ -161,6 +162,22 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
+  }
+
+
+
+  void
+  Scene::check_supports() const
+  {
+    const bool curve_supports =
+      boundary_curves.has_supports(
+        BoundaryCurve::DirichletMethod::implicit_boundary) ||
+      boundary_curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
+    AssertThrow(grid.has_face_conditions() || curve_supports,
+                ExcMessage("The body has no support at all: no grid face "
+                           "condition and no fixed, roller or displacement "
+                           "condition on a boundary curve. Its stiffness "
+                           "cannot resist rigid motion; add a support."));
   }
 
 
@@ -562,6 +579,14 @@ namespace bsmpm
         if (has_prescribed)
           fit_prescribed_displacement(1. / n_load_steps);
         assemble_system(load_factor, 1. / n_load_steps);
+        if (linear_solver.estimates_condition() && system_rhs.l2_norm() > 0)
+          {
+            TimerOutput::Scope t(timer, "condition estimate");
+            const double       estimate =
+              linear_solver.estimate_condition_number(system_matrix, system_rhs);
+            double &largest = run_summary.quantities["condition_estimate"];
+            largest         = std::max(largest, estimate);
+          }
         const auto solver_report = solve();
         move_points(step);
         update_curves();

@@ -47,11 +47,30 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /** Solves; in automatic mode, a CG failure makes this and every later
+     * solve direct. */
     Report
     solve(const TrilinosWrappers::SparseMatrix &matrix,
           TrilinosWrappers::MPI::Vector        &solution,
           const TrilinosWrappers::MPI::Vector  &rhs,
           const DoFHandler<2>                  &dof_handler) const;
+
+    /**
+     * An estimate of the spectral condition number of @p matrix: the ratio
+     * of the extreme eigenvalues of the Lanczos tridiagonal matrix that
+     * unpreconditioned CG builds on the system (at most 'Condition estimate
+     * iterations' steps; fewer steps give a lower bound). Only when
+     * 'Estimate condition number' is on (see estimates_condition()).
+     */
+    double
+    estimate_condition_number(const TrilinosWrappers::SparseMatrix &matrix,
+                              const TrilinosWrappers::MPI::Vector  &rhs) const;
+
+    bool
+    estimates_condition() const
+    {
+      return estimate_condition;
+    }
 
   private:
     /** Sparse LU with iterative refinement. */
@@ -65,6 +84,10 @@ namespace bsmpm
     unsigned int max_iterations      = 10000;
     unsigned int automatic_threshold = 100000;
     unsigned int max_refinements     = 3;
+    bool         estimate_condition  = false;
+    /** Automatic mode: CG did not converge in an earlier load step. */
+    mutable bool cg_failed = false;
+    unsigned int condition_iterations = 2000;
   };
 } // namespace bsmpm
 

@@ -73,6 +73,9 @@ namespace bsmpm
     setup();
     void
     setup_system();
+    /** Throws if nothing holds the body against rigid motion. */
+    void
+    check_supports() const;
     void
     make_constraints();
     void
