@@ -49,12 +49,12 @@ initial = simple.Show(first, view)
 initial.SetRepresentationType("Wireframe")
 initial.AmbientColor = initial.DiffuseColor = [0.6, 0.6, 0.6]
 initial.LineWidth = 2
-simple.ColorBy(initial, None)
+initial.ColorArrayName = [None, ""]
 deformed = simple.Show(curves, view)
 deformed.SetRepresentationType("Wireframe")
 deformed.AmbientColor = deformed.DiffuseColor = [0, 0, 0]
 deformed.LineWidth = 3
-simple.ColorBy(deformed, None)
+deformed.ColorArrayName = [None, ""]
 
 view.InteractionMode = "2D"
 simple.ResetCamera(view)
