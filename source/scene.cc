@@ -75,6 +75,7 @@ namespace bsmpm
     NeumannLoads::declare_parameters(prm);
     ImplicitBoundary::declare_parameters(prm);
     NitscheBoundary::declare_parameters(prm);
+    GhostPenalty::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
@@ -107,6 +108,7 @@ namespace bsmpm
     neumann_loads.parse_parameters(prm);
     implicit_boundary.parse_parameters(prm);
     nitsche_boundary.parse_parameters(prm);
+    ghost_penalty.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
@@ -188,7 +190,10 @@ namespace bsmpm
     // The couplings of the full grid: valid whichever cells hold points, so
     // the sparsity pattern is built once for all load steps.
     DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
-    DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
+    if (ghost_penalty.enabled())
+      DoFTools::make_flux_sparsity_pattern(grid.dof_handler(), dsp);
+    else
+      DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
     SparsityTools::distribute_sparsity_pattern(dsp,
                                                grid.locally_owned_dofs(),
                                                communicator,
@@ -335,6 +340,22 @@ namespace bsmpm
     for (const auto i : unsupported_dofs)
       system_matrix.add(i, i, material.stiffness()[0][0]);
     timer.leave_subsection("assembly");
+    if (ghost_penalty.enabled())
+      {
+        TimerOutput::Scope  t(timer, "ghost penalty");
+        std::vector<double> fraction(cell_moments.size());
+        const double        area = grid.cell_size()[0] * grid.cell_size()[1];
+        for (unsigned int c = 0; c < fraction.size(); ++c)
+          fraction[c] = cell_moments[c].v / area;
+        ghost_penalty.assemble(grid,
+                               *kernel,
+                               material.youngs_modulus(),
+                               fraction,
+                               has_prescribed ? &prescribed : nullptr,
+                               constraints,
+                               system_matrix,
+                               system_rhs);
+      }
     if (boundary_curves.has_supports(
           BoundaryCurve::DirichletMethod::implicit_boundary))
       {
@@ -583,7 +604,8 @@ namespace bsmpm
           {
             TimerOutput::Scope t(timer, "condition estimate");
             const double       estimate =
-              linear_solver.estimate_condition_number(system_matrix, system_rhs);
+              linear_solver.estimate_condition_number(system_matrix,
+                                                      system_rhs);
             double &largest = run_summary.quantities["condition_estimate"];
             largest         = std::max(largest, estimate);
           }

@@ -14,6 +14,7 @@
 #include <bsmpm/body_region.h>
 #include <bsmpm/boundary_curves.h>
 #include <bsmpm/exact_solution.h>
+#include <bsmpm/ghost_penalty.h>
 #include <bsmpm/implicit_boundary.h>
 #include <bsmpm/linear_solver.h>
 #include <bsmpm/material.h>
@@ -112,6 +113,7 @@ namespace bsmpm
     NeumannLoads                   neumann_loads;
     ImplicitBoundary               implicit_boundary;
     NitscheBoundary                nitsche_boundary;
+    GhostPenalty                   ghost_penalty;
     LinearSolver                   linear_solver;
     OutputWriter                   output;
     Verification                   verification;
