@@ -85,6 +85,12 @@ namespace bsmpm
 
   namespace
   {
+    const char *singular_message =
+      "Linear solver: the direct solver found the system singular. Part of "
+      "the body is not held against rigid motion (a support missing, or a "
+      "roller alone where a fixed point is needed), or a cell holds too "
+      "little material (Ghost penalty/Enable = true stabilises such cells).";
+
     /** ||A x - b|| / ||b||. */
     double
     relative_residual(const TrilinosWrappers::SparseMatrix &A,
@@ -125,8 +131,10 @@ namespace bsmpm
           }
         catch (const ExceptionBase &)
           {
-            if (name == "Amesos_Klu")
-              throw;
+            // MUMPS missing, or the factorisation failed: try KLU; if that
+            // fails too, the matrix is singular.
+            AssertThrow(name != "Amesos_Klu",
+                        ExcMessage(singular_message));
           }
       }
     try
@@ -135,12 +143,7 @@ namespace bsmpm
       }
     catch (const ExceptionBase &)
       {
-        AssertThrow(false,
-                    ExcMessage("Linear solver: the direct solver found the "
-                               "system singular. Part of the body is not held "
-                               "against rigid motion (a support missing, or a "
-                               "roller alone where a fixed point is needed), "
-                               "or a cell holds too little material."));
+        AssertThrow(false, ExcMessage(singular_message));
       }
 
     // Iterative refinement with the same factors: a back-substitution

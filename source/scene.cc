@@ -446,14 +446,22 @@ namespace bsmpm
       {
         std::ostringstream where;
         where << '(' << report.example[0] << ", " << report.example[1] << ')';
+        const double size = grid.lower_left().distance(grid.upper_right());
+        const bool   far =
+          report.example.distance(grid.lower_left()) > 10 * size;
         AssertThrow(false,
                     ExcMessage(std::to_string(report.n_left_grid) +
                                " material point(s) left the background grid "
                                "in load step " +
                                std::to_string(step) + ", one of them to " +
-                               where.str() +
-                               ". Enlarge the grid or reduce the load step. "
-                               "The output of the previous step is intact."));
+                               where.str() + ". " +
+                               (far ? "A displacement this far beyond the grid "
+                                      "points to an instability: a nearly "
+                                      "empty cell (Ghost penalty/Enable = "
+                                      "true stabilises such cells)." :
+                                      "Enlarge the grid or reduce the load "
+                                      "step.") +
+                               " The output of the previous step is intact."));
       }
   }
 
