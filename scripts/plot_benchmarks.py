@@ -102,7 +102,9 @@ def main():
                    [("plate_neumann_h", "4a, IBM rollers"),
                     ("plate_neumann_nitsche_h", "4a, Nitsche rollers"),
                     ("plate_dirichlet_h", "4b, IBM"),
-                    ("plate_dirichlet_nitsche_h", "4b, Nitsche")],
+                    ("plate_dirichlet_nitsche_h", "4b, Nitsche"),
+                    ("fem_plate_q1", "4a by fitted FEM, Q1"),
+                    ("fem_plate_q2", "4a by fitted FEM, Q2")],
                    "L2_u", "Plate with a hole: error against run time",
                    "plate_work_precision.png")
     work_precision(directory, figures,
