@@ -569,6 +569,30 @@ namespace bsmpm
 
 
 
+  void
+  BoundaryCurves::mark_support_cells(
+    const BackgroundGrid                &grid,
+    const BoundaryCurve::DirichletMethod method,
+    const bool                           both_components_only,
+    std::vector<bool>                   &cells) const
+  {
+    for (const auto &curve : curves)
+      if (curve.dirichlet_method == method)
+        for (const auto &piece : curve.pieces)
+          {
+            const CurveCondition *condition =
+              curve.condition_of_segment(piece.segment);
+            if (condition == nullptr || !condition->is_support() ||
+                (both_components_only && !condition->holds_both_components()))
+              continue;
+            const auto cell = grid.locally_owned_cell(piece.cell);
+            if (cell != grid.dof_handler().end())
+              cells[cell->active_cell_index()] = true;
+          }
+  }
+
+
+
   bool
   BoundaryCurves::has_supports(
     const BoundaryCurve::DirichletMethod method) const

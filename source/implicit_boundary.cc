@@ -102,44 +102,6 @@ namespace bsmpm
 
 
   void
-  ImplicitBoundary::mark_supporting_cells(const BoundaryCurves &curves,
-                                          const BackgroundGrid &grid,
-                                          std::vector<bool>    &cells) const
-  {
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (!is_ibm_support(curve, condition) ||
-              !condition->holds_both_components())
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell != grid.dof_handler().end())
-            cells[cell->active_cell_index()] = true;
-        }
-  }
-
-
-
-  void
-  ImplicitBoundary::mark_band_cells(const BoundaryCurves &curves,
-                                    const BackgroundGrid &grid,
-                                    std::vector<bool>    &cells) const
-  {
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        if (is_ibm_support(curve, curve.condition_of_segment(piece.segment)))
-          {
-            const auto cell = grid.locally_owned_cell(piece.cell);
-            if (cell != grid.dof_handler().end())
-              cells[cell->active_cell_index()] = true;
-          }
-  }
-
-
-
-  void
   ImplicitBoundary::assemble(
     const BoundaryCurves                             &curves,
     const BackgroundGrid                             &grid,
@@ -371,7 +333,8 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector  solution(grid.locally_owned_dofs(), comm);
     SolverControl                  control(1, 0);
     TrilinosWrappers::SolverDirect solver(
-      control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
+      control,
+      TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
     solver.solve(mass, solution, rhs);
     constraints.distribute(solution);
 

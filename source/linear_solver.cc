@@ -68,15 +68,15 @@ namespace bsmpm
   LinearSolver::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    const std::string m = prm.get("Method");
-    method              = m == "direct" ?
-                            Method::direct :
-                            (m == "cg amg" ? Method::cg_amg : Method::automatic);
-    tolerance           = prm.get_double("Tolerance");
-    max_iterations      = prm.get_integer("Maximum iterations");
-    automatic_threshold = prm.get_integer("Automatic threshold");
-    max_refinements     = prm.get_integer("Refinement steps");
-    estimate_condition  = prm.get_bool("Estimate condition number");
+    const std::string m  = prm.get("Method");
+    method               = m == "direct" ?
+                             Method::direct :
+                             (m == "cg amg" ? Method::cg_amg : Method::automatic);
+    tolerance            = prm.get_double("Tolerance");
+    max_iterations       = prm.get_integer("Maximum iterations");
+    automatic_threshold  = prm.get_integer("Automatic threshold");
+    max_refinements      = prm.get_integer("Refinement steps");
+    estimate_condition   = prm.get_bool("Estimate condition number");
     condition_iterations = prm.get_integer("Condition estimate iterations");
     prm.leave_subsection();
   }
@@ -133,8 +133,7 @@ namespace bsmpm
           {
             // MUMPS missing, or the factorisation failed: try KLU; if that
             // fails too, the matrix is singular.
-            AssertThrow(name != "Amesos_Klu",
-                        ExcMessage(singular_message));
+            AssertThrow(name != "Amesos_Klu", ExcMessage(singular_message));
           }
       }
     try
@@ -177,9 +176,9 @@ namespace bsmpm
   {
     double                                  estimate = 1.;
     SolverControl                           control(condition_iterations,
-                                  1e-14 * rhs.l2_norm(),
-                                  false,
-                                  false);
+                          1e-14 * rhs.l2_norm(),
+                          false,
+                          false);
     SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
     cg.connect_condition_number_slot(
       [&estimate](const double c) { estimate = c; }, false);
@@ -213,10 +212,9 @@ namespace bsmpm
         return report;
       }
 
-    const bool use_direct =
-      method == Method::direct ||
-      (method == Method::automatic &&
-       (matrix.m() <= automatic_threshold || cg_failed));
+    const bool use_direct = method == Method::direct ||
+                            (method == Method::automatic &&
+                             (matrix.m() <= automatic_threshold || cg_failed));
 
     if (use_direct)
       return solve_direct(matrix, solution, rhs);

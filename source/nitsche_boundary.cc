@@ -54,27 +54,6 @@ namespace bsmpm
 
 
   void
-  NitscheBoundary::mark_supporting_cells(const BoundaryCurves &curves,
-                                         const BackgroundGrid &grid,
-                                         std::vector<bool>    &cells) const
-  {
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (!is_nitsche_support(curve, condition) ||
-              !condition->holds_both_components())
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell != grid.dof_handler().end())
-            cells[cell->active_cell_index()] = true;
-        }
-  }
-
-
-
-  void
   NitscheBoundary::assemble(const BoundaryCurves            &curves,
                             const BackgroundGrid            &grid,
                             const Q1CellKernel              &kernel,

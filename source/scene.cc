@@ -226,12 +226,10 @@ namespace bsmpm
     std::vector<bool> supporting(grid.triangulation().n_active_cells(), false);
     if (!boundary_curves.empty())
       {
-        implicit_boundary.mark_supporting_cells(boundary_curves,
-                                                grid,
-                                                supporting);
-        nitsche_boundary.mark_supporting_cells(boundary_curves,
-                                               grid,
-                                               supporting);
+        for (const auto method :
+             {BoundaryCurve::DirichletMethod::implicit_boundary,
+              BoundaryCurve::DirichletMethod::nitsche})
+          boundary_curves.mark_support_cells(grid, method, true, supporting);
       }
     LinearAlgebra::distributed::Vector<double> support(
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), communicator);
@@ -428,7 +426,11 @@ namespace bsmpm
     if (ibm)
       {
         band_cells.assign(grid.triangulation().n_active_cells(), false);
-        implicit_boundary.mark_band_cells(boundary_curves, grid, band_cells);
+        boundary_curves.mark_support_cells(
+          grid,
+          BoundaryCurve::DirichletMethod::implicit_boundary,
+          false,
+          band_cells);
       }
     const auto report =
       points.move(*kernel,
@@ -447,8 +449,7 @@ namespace bsmpm
         std::ostringstream where;
         where << '(' << report.example[0] << ", " << report.example[1] << ')';
         const double size = grid.lower_left().distance(grid.upper_right());
-        const bool   far =
-          report.example.distance(grid.lower_left()) > 10 * size;
+        const bool far = report.example.distance(grid.lower_left()) > 10 * size;
         AssertThrow(false,
                     ExcMessage(std::to_string(report.n_left_grid) +
                                " material point(s) left the background grid "

@@ -211,6 +211,18 @@ namespace bsmpm
     bool
     has_loads() const;
 
+    /**
+     * Sets @p cells[c] for every locally owned cell c (by
+     * active_cell_index()) that a support imposed by @p method crosses;
+     * with @p both_components_only, only supports that hold both components
+     * (not rollers) count.
+     */
+    void
+    mark_support_cells(const BackgroundGrid                &grid,
+                       const BoundaryCurve::DirichletMethod method,
+                       const bool         both_components_only,
+                       std::vector<bool> &cells) const;
+
     /** Whether any curve carries a support imposed by @p method. */
     bool
     has_supports(const BoundaryCurve::DirichletMethod method) const;

@@ -75,25 +75,6 @@ namespace bsmpm
     }
 
     /**
-     * Sets @p cells[c] for every locally owned cell c (active_cell_index)
-     * crossed by an IBM support of both components: such a cell supports
-     * its DoFs even if it holds no material point.
-     */
-    void
-    mark_supporting_cells(const BoundaryCurves &curves,
-                          const BackgroundGrid &grid,
-                          std::vector<bool>    &cells) const;
-
-    /**
-     * Sets @p cells[c] for every locally owned cell crossed by an IBM
-     * support: the cells whose points the support may move.
-     */
-    void
-    mark_band_cells(const BoundaryCurves &curves,
-                    const BackgroundGrid &grid,
-                    std::vector<bool>    &cells) const;
-
-    /**
      * Adds the band terms k2 + k2^T + k3 of all IBM supports on locally owned
      * cells to @p matrix, and, if @p prescribed is given (d^a with ghosts),
      * the band part of -f^d to @p rhs.

@@ -86,7 +86,7 @@ namespace bsmpm
     unsigned int max_refinements     = 3;
     bool         estimate_condition  = false;
     /** Automatic mode: CG did not converge in an earlier load step. */
-    mutable bool cg_failed = false;
+    mutable bool cg_failed            = false;
     unsigned int condition_iterations = 2000;
   };
 } // namespace bsmpm

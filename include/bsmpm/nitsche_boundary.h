@@ -41,13 +41,6 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
-    /** Flags the locally owned cells crossed by a Nitsche support of both
-     * components (they support their DoFs). */
-    void
-    mark_supporting_cells(const BoundaryCurves &curves,
-                          const BackgroundGrid &grid,
-                          std::vector<bool>    &cells) const;
-
     /**
      * Adds the Nitsche terms of all Nitsche supports on locally owned cells.
      * @p increment_factor scales the prescribed displacement to the
