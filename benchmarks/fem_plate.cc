@@ -88,8 +88,8 @@ namespace
       double lo = 0, hi = 1;
       for (unsigned int k = 0; k < 60; ++k)
         {
-          const double   mid = (lo + hi) / 2;
-          const Point<2> c   = spline.value(mid);
+          const double   mid                         = (lo + hi) / 2;
+          const Point<2> c                           = spline.value(mid);
           (std::atan2(c[1], c[0]) < theta ? lo : hi) = mid;
         }
       return spline.value((lo + hi) / 2).norm();
@@ -108,17 +108,17 @@ main(int argc, char **argv)
   const unsigned int max_refinements = argc > 2 ? std::stoi(argv[2]) : 5;
 
   // The 11 points of bsmpm's scene, counter-clockwise about the body.
-  const bsmpm::BSplineCurve spline({Point<2>(1.50, 0.00),
-                                    Point<2>(1.78, 0.21),
-                                    Point<2>(2.00, 0.75),
-                                    Point<2>(1.75, 1.30),
-                                    Point<2>(1.50, 1.35),
-                                    Point<2>(1.00, 1.15),
-                                    Point<2>(0.73, 1.31),
-                                    Point<2>(0.60, 1.80),
-                                    Point<2>(0.35, 1.95),
-                                    Point<2>(0.10, 1.75),
-                                    Point<2>(0.00, 1.50)},
+  const bsmpm::BSplineCurve          spline({Point<2>(1.50, 0.00),
+                                             Point<2>(1.78, 0.21),
+                                             Point<2>(2.00, 0.75),
+                                             Point<2>(1.75, 1.30),
+                                             Point<2>(1.50, 1.35),
+                                             Point<2>(1.00, 1.15),
+                                             Point<2>(0.73, 1.31),
+                                             Point<2>(0.60, 1.80),
+                                             Point<2>(0.35, 1.95),
+                                             Point<2>(0.10, 1.75),
+                                             Point<2>(0.00, 1.50)},
                                    false);
   const bsmpm::LinearElasticMaterial material(
     1e8, 0.2, bsmpm::LinearElasticMaterial::Model::plane_stress);
@@ -151,10 +151,9 @@ main(int argc, char **argv)
             {
               const Point<2> c = chart.pull_back(cell->face(f)->center());
               cell->face(f)->set_boundary_id(
-                c[0] < 1e-6 ? 0 :
-                              (c[0] > numbers::PI / 2 - 1e-6 ?
-                                 1 :
-                                 (c[1] < 0.5 ? 2 : 3)));
+                c[0] < 1e-6 ?
+                  0 :
+                  (c[0] > numbers::PI / 2 - 1e-6 ? 1 : (c[1] < 0.5 ? 2 : 3)));
             }
       tria.refine_global(refinements);
 
@@ -164,18 +163,20 @@ main(int argc, char **argv)
       dofs.distribute_dofs(fe);
 
       AffineConstraints<double> constraints;
-      VectorTools::interpolate_boundary_values(mapping,
-                                               dofs,
-                                               0,
-                                               Functions::ZeroFunction<2>(2),
-                                               constraints,
-                                               ComponentMask(std::vector<bool>{false, true}));
-      VectorTools::interpolate_boundary_values(mapping,
-                                               dofs,
-                                               1,
-                                               Functions::ZeroFunction<2>(2),
-                                               constraints,
-                                               ComponentMask(std::vector<bool>{true, false}));
+      VectorTools::interpolate_boundary_values(
+        mapping,
+        dofs,
+        0,
+        Functions::ZeroFunction<2>(2),
+        constraints,
+        ComponentMask(std::vector<bool>{false, true}));
+      VectorTools::interpolate_boundary_values(
+        mapping,
+        dofs,
+        1,
+        Functions::ZeroFunction<2>(2),
+        constraints,
+        ComponentMask(std::vector<bool>{true, false}));
       constraints.close();
 
       DynamicSparsityPattern dsp(dofs.n_dofs());
@@ -185,20 +186,20 @@ main(int argc, char **argv)
       SparseMatrix<double> matrix(sparsity);
       Vector<double>       rhs(dofs.n_dofs()), solution(dofs.n_dofs());
 
-      const QGauss<2>     quadrature(degree + 1);
-      const QGauss<1>     face_quadrature(degree + 1);
-      FEValues<2>         fe_values(mapping,
+      const QGauss<2>                      quadrature(degree + 1);
+      const QGauss<1>                      face_quadrature(degree + 1);
+      FEValues<2>                          fe_values(mapping,
                             fe,
                             quadrature,
                             update_gradients | update_JxW_values);
-      FEFaceValues<2>     face_values(mapping,
+      FEFaceValues<2>                      face_values(mapping,
                                   fe,
                                   face_quadrature,
                                   update_values | update_quadrature_points |
                                     update_normal_vectors | update_JxW_values);
-      const unsigned int  n = fe.n_dofs_per_cell();
-      FullMatrix<double>  cell_matrix(n, n);
-      Vector<double>      cell_rhs(n);
+      const unsigned int                   n = fe.n_dofs_per_cell();
+      FullMatrix<double>                   cell_matrix(n, n);
+      Vector<double>                       cell_rhs(n);
       std::vector<types::global_dof_index> dof_indices(n);
       const FEValuesExtractors::Vector     u(0);
 
@@ -230,8 +231,8 @@ main(int argc, char **argv)
                       exact.traction(face_values.quadrature_point(q),
                                      face_values.normal_vector(q));
                     for (unsigned int i = 0; i < n; ++i)
-                      cell_rhs[i] += face_values[u].value(i, q) * t *
-                                     face_values.JxW(q);
+                      cell_rhs[i] +=
+                        face_values[u].value(i, q) * t * face_values.JxW(q);
                   }
               }
           cell->get_dof_indices(dof_indices);
@@ -246,8 +247,8 @@ main(int argc, char **argv)
       const double time = timer.wall_time();
 
       // Relative L2 error of the displacement over the body.
-      const QGauss<2> error_quadrature(degree + 3);
-      FEValues<2>     error_values(mapping,
+      const QGauss<2>           error_quadrature(degree + 3);
+      FEValues<2>               error_values(mapping,
                                fe,
                                error_quadrature,
                                update_values | update_quadrature_points |
