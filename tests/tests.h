@@ -8,6 +8,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <string>
@@ -32,5 +33,32 @@ filter_roundoff(const double value, const double tolerance = 1e-12)
 {
   return std::abs(value) < tolerance ? 0. : value;
 }
+
+/** "yes" or "no", to print the outcome of a check. */
+inline const char *
+yes_no(const bool condition)
+{
+  return condition ? "yes" : "no";
+}
+
+/** Random numbers whose sequence is the same on every platform
+ * (std::uniform_real_distribution is not specified bit for bit). */
+class Random
+{
+public:
+  explicit Random(const std::uint64_t seed = 7)
+    : state(seed)
+  {}
+
+  double
+  operator()(const double a = 0., const double b = 1.)
+  {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return a + (b - a) * double(state >> 11) / double(1ULL << 53);
+  }
+
+private:
+  std::uint64_t state;
+};
 
 #endif

@@ -30,26 +30,6 @@ using namespace bsmpm;
 
 namespace
 {
-  class Random
-  {
-  public:
-    double
-    operator()(const double a = 0., const double b = 1.)
-    {
-      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-      return a + (b - a) * double(state >> 11) / double(1ULL << 53);
-    }
-
-  private:
-    std::uint64_t state = 7;
-  };
-
-  const char *
-  yes_no(const bool b)
-  {
-    return b ? "yes" : "no";
-  }
-
   Voigt
   to_voigt(const SymmetricTensor<2, 2> &s)
   {

@@ -36,28 +36,6 @@ using namespace bsmpm;
 
 namespace
 {
-  // A random number generator whose sequence is the same on every platform
-  // (std::uniform_real_distribution is not specified bit for bit).
-  class Random
-  {
-  public:
-    double
-    operator()(const double a = 0., const double b = 1.)
-    {
-      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-      return a + (b - a) * double(state >> 11) / double(1ULL << 53);
-    }
-
-  private:
-    std::uint64_t state = 20240601;
-  };
-
-  const char *
-  yes_no(const bool b)
-  {
-    return b ? "yes" : "no";
-  }
-
   const char *
   model_name(const LinearElasticMaterial::Model model)
   {
@@ -252,7 +230,7 @@ namespace
   check_shape_functions()
   {
     deallog.push("shape");
-    Random                      random;
+    Random                      random(20240601);
     const Point<2>              origin(1.3, -0.4);
     const Tensor<1, 2>          h({0.7, 0.3});
     Reference                   reference(origin, h);
@@ -355,7 +333,7 @@ namespace
   {
     deallog.push(std::string(model_name(model)) + ", " +
                  std::to_string(n_points) + " points");
-    Random                      random;
+    Random                      random(20240601);
     const Point<2>              origin(-2.1, 0.6);
     const Tensor<1, 2>          h({0.7, 0.3});
     Reference                   reference(origin, h);

@@ -37,12 +37,6 @@ namespace
                                     "  set Cells per direction = 8, 6\n"
                                     "end\n";
 
-  const char *
-  yes_no(const bool b)
-  {
-    return b ? "yes" : "no";
-  }
-
   // Grid, region, layout and material points of one parameter set.
   struct Setup
   {

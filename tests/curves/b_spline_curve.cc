@@ -18,12 +18,6 @@ using namespace bsmpm;
 
 namespace
 {
-  std::string
-  yes(const bool condition)
-  {
-    return condition ? "yes" : "no";
-  }
-
   // N_{i,p}(u) by the recursion of eqs. (11)-(12), with 0/0 = 0.
   double
   basis(const std::vector<double> &knots,
@@ -153,7 +147,7 @@ main()
         deallog << (closed ? "closed" : "open") << ": segments "
                 << curve.n_segments() << ", knots " << curve.knots().size()
                 << ", control points " << curve.control_points().size()
-                << ", through every point: " << yes(error == 0) << std::endl;
+                << ", through every point: " << yes_no(error == 0) << std::endl;
       }
     deallog.pop();
   }
@@ -177,14 +171,15 @@ main()
         tangent_error =
           std::max(tangent_error, (curve.derivative(u) - s.back() * e).norm());
       }
-    deallog << "value(u) = A + u L e to 1e-14 L: " << yes(error < 1e-14 * 2.9)
-            << std::endl;
-    deallog << "dC/du = L e to 1e-14 L: " << yes(tangent_error < 1e-14 * 2.9)
+    deallog << "value(u) = A + u L e to 1e-14 L: "
+            << yes_no(error < 1e-14 * 2.9) << std::endl;
+    deallog << "dC/du = L e to 1e-14 L: " << yes_no(tangent_error < 1e-14 * 2.9)
             << std::endl;
     deallog << "length equals the chord sum to 1e-14: "
-            << yes(std::abs(curve.length() - 2.9) < 1e-14 * 2.9) << std::endl;
+            << yes_no(std::abs(curve.length() - 2.9) < 1e-14 * 2.9)
+            << std::endl;
     deallog << "length(0.2, 0.7) = 0.5 L to 1e-14: "
-            << yes(std::abs(curve.length(0.2, 0.7) - 1.45) < 1e-14 * 2.9)
+            << yes_no(std::abs(curve.length(0.2, 0.7) - 1.45) < 1e-14 * 2.9)
             << std::endl;
     const auto box = curve.bounding_box().get_boundary_points();
     deallog << "bounding box: " << box.first << " to " << box.second
@@ -224,10 +219,10 @@ main()
                   << " " << round2(std::log2(last_length / length_error));
         deallog << std::setprecision(8) << std::endl;
         deallog << "n " << n << ": C1 at all joints to 1e-13: "
-                << yes(tangent_jump(curve) < 1e-13)
-                << ", outward normal points out: " << yes(outward)
-                << ", self-intersecting: " << yes(curve.is_self_intersecting())
-                << std::endl;
+                << yes_no(tangent_jump(curve) < 1e-13)
+                << ", outward normal points out: " << yes_no(outward)
+                << ", self-intersecting: "
+                << yes_no(curve.is_self_intersecting()) << std::endl;
         last_distance = distance;
         last_length   = length_error;
       }
@@ -235,15 +230,15 @@ main()
     // The wrap: same point and same derivative at u = 0 and u = 1.
     const BSplineCurve curve(circle_points(16, center, 1), true);
     deallog << "wraps: value(1) = value(0): "
-            << yes(curve.value(1.).distance(curve.value(0.)) == 0)
+            << yes_no(curve.value(1.).distance(curve.value(0.)) == 0)
             << ", derivative(1) = derivative(0) to 1e-13: "
-            << yes((curve.derivative(1.) - curve.derivative(0.)).norm() <
-                   1e-13 * curve.derivative(0.).norm())
+            << yes_no((curve.derivative(1.) - curve.derivative(0.)).norm() <
+                      1e-13 * curve.derivative(0.).norm())
             << std::endl;
     const auto box = curve.bounding_box().get_boundary_points();
     deallog << "bounding box is the circle's to 1e-4: "
-            << yes(box.first.distance(Point<2>(-0.7, -1.2)) < 1e-4 &&
-                   box.second.distance(Point<2>(1.3, 0.8)) < 1e-4)
+            << yes_no(box.first.distance(Point<2>(-0.7, -1.2)) < 1e-4 &&
+                      box.second.distance(Point<2>(1.3, 0.8)) < 1e-4)
             << std::endl;
     deallog.pop();
   }
@@ -280,9 +275,9 @@ main()
           pieces += curve.length(i / 10., (i + 1) / 10.);
         deallog << (hairpin ? "hairpin" : "paper's curve") << ": length "
                 << curve.length() << ", equals the brute-force rule to 1e-14: "
-                << yes(std::abs(curve.length() - brute) < 1e-14 * brute)
+                << yes_no(std::abs(curve.length() - brute) < 1e-14 * brute)
                 << ", sum over ten parts to 1e-14: "
-                << yes(std::abs(curve.length() - pieces) < 1e-14 * brute)
+                << yes_no(std::abs(curve.length() - pieces) < 1e-14 * brute)
                 << std::endl;
       }
     deallog.pop();
@@ -316,8 +311,8 @@ main()
                      std::min(std::min(std::abs(x[0]), std::abs(x[0] - 2)),
                               std::min(std::abs(x[1]), std::abs(x[1] - 2))));
         }
-      deallog << name << ": on the square: " << yes(off < 1e-15) << ", length "
-              << filter_roundoff(curve.length() - 8) + 8
+      deallog << name << ": on the square: " << yes_no(off < 1e-15)
+              << ", length " << filter_roundoff(curve.length() - 8) + 8
               << ", tangent jump at corners " << std::setprecision(3)
               << filter_roundoff(tangent_jump(curve)) << std::setprecision(8)
               << std::endl;
@@ -356,8 +351,8 @@ main()
           error =
             std::max(error, cox_de_boor(curve, ui).distance(curve.value(ui)));
         deallog << (closed ? "closed" : "open")
-                << ": knot vector valid: " << yes(valid)
-                << ", same points to 1e-14: " << yes(error < 1e-14)
+                << ": knot vector valid: " << yes_no(valid)
+                << ", same points to 1e-14: " << yes_no(error < 1e-14)
                 << std::endl;
       }
     deallog.pop();
@@ -400,10 +395,11 @@ main()
                     ExcInternalError());
       }
     deallog << "distance is the circle's to 2.5e-7: "
-            << yes(max_distance < 2.5e-7)
-            << ", foot on the circle's radius to 1e-4: " << yes(max_foot < 1e-4)
-            << ", stationary to 1e-12: " << yes(max_stationary < 1e-12)
-            << ", no sample closer: " << yes(max_worse <= 0) << std::endl;
+            << yes_no(max_distance < 2.5e-7)
+            << ", foot on the circle's radius to 1e-4: "
+            << yes_no(max_foot < 1e-4)
+            << ", stationary to 1e-12: " << yes_no(max_stationary < 1e-12)
+            << ", no sample closer: " << yes_no(max_worse <= 0) << std::endl;
 
     // Beyond the ends of an open straight chain: the ends.
     const BSplineCurve line({Point<2>(0, 0), Point<2>(1, 0), Point<2>(2, 0)},
@@ -427,9 +423,10 @@ main()
         eight.emplace_back(std::sin(phi), std::sin(phi) * std::cos(phi));
       }
     deallog << "figure eight: "
-            << yes(BSplineCurve(eight, true).is_self_intersecting())
+            << yes_no(BSplineCurve(eight, true).is_self_intersecting())
             << ", paper's curve: "
-            << yes(BSplineCurve(paper_points(), false).is_self_intersecting())
+            << yes_no(
+                 BSplineCurve(paper_points(), false).is_self_intersecting())
             << std::endl;
     deallog.pop();
   }

@@ -20,12 +20,6 @@ using namespace bsmpm;
 namespace
 {
   std::string
-  yes(const bool condition)
-  {
-    return condition ? "yes" : "no";
-  }
-
-  std::string
   cell_name(const std::array<unsigned int, 2> &cell)
   {
     return "(" + std::to_string(cell[0]) + "," + std::to_string(cell[1]) + ")";
@@ -126,10 +120,11 @@ namespace
       CurveCellIntersection::cut(curve, grid);
     const Check c = check(curve, grid, pieces);
     deallog << name << ": " << c.n_pieces << " pieces in " << c.cells.size()
-            << " cells, lengths sum to 1e-12: " << yes(c.length_defect < 1e-12)
-            << ", inside cells to 1e-12: " << yes(c.outside < 1e-12)
-            << ", joined: " << yes(c.joined)
-            << ", neighbours: " << yes(c.neighbours)
+            << " cells, lengths sum to 1e-12: "
+            << yes_no(c.length_defect < 1e-12)
+            << ", inside cells to 1e-12: " << yes_no(c.outside < 1e-12)
+            << ", joined: " << yes_no(c.joined)
+            << ", neighbours: " << yes_no(c.neighbours)
             << ", shorter than 1e-9 h: " << c.n_short
             << ", diagonal steps: " << c.n_diagonal << std::endl;
     if (list_pieces)
@@ -285,7 +280,7 @@ main()
     for (const CurvePiece &piece : pieces)
       beyond = beyond || piece.cell[0] == 20 || piece.cell[1] == 20;
     report("paper curve, lines through its extremes", curve, grid, false);
-    deallog << "no piece beyond the touched lines: " << yes(!beyond)
+    deallog << "no piece beyond the touched lines: " << yes_no(!beyond)
             << std::endl;
     deallog.pop();
   }
@@ -469,10 +464,10 @@ main()
     deallog << "curves touching grid lines at their extremes: " << n_touching
             << ", pieces beyond the touched lines: " << n_beyond << std::endl;
     deallog << "worst relative length defect: " << std::setprecision(2)
-            << worst_defect << " (below 1e-12: " << yes(worst_defect < 1e-12)
+            << worst_defect << " (below 1e-12: " << yes_no(worst_defect < 1e-12)
             << ")" << std::endl;
     deallog << "worst distance outside the cell: " << worst_outside
-            << " (below 1e-12: " << yes(worst_outside < 1e-12) << ")"
+            << " (below 1e-12: " << yes_no(worst_outside < 1e-12) << ")"
             << std::endl;
     deallog.pop();
   }
