@@ -607,6 +607,55 @@ namespace bsmpm
 
 
 
+  bool
+  BoundaryCurves::encloses_body(std::string &reason) const
+  {
+    reason.clear();
+    if (curves.empty())
+      reason = "no boundary curves";
+    for (unsigned int c = 0; c < curves.size() && reason.empty(); ++c)
+      if (sources[c].kind == "material points" &&
+          !curves[c].halve_point_volumes)
+        reason = curves[c].name +
+                 " runs through material points whose volumes reach "
+                 "beyond it ('Halve point volumes' makes it the boundary)";
+    if (!reason.empty())
+      return false;
+
+    // Each open curve must end where another one starts.
+    double scale = 0;
+    for (const auto &curve : curves)
+      for (const auto &p : curve.initial_positions)
+        scale = std::max(scale, std::max(std::abs(p[0]), std::abs(p[1])));
+    const double      tolerance = 1e-10 * std::max(scale, 1e-300);
+    std::vector<bool> start_taken(curves.size(), false);
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      {
+        if (curves[c].closed)
+          continue;
+        const Point<2> end   = curves[c].initial_positions.back();
+        bool           found = false;
+        for (unsigned int d = 0; d < curves.size() && !found; ++d)
+          if (!curves[d].closed && !start_taken[d] &&
+              curves[d].initial_positions.front().distance(end) <= tolerance)
+            {
+              start_taken[d] = true;
+              found          = true;
+            }
+        if (!found)
+          {
+            std::ostringstream where;
+            where << curves[c].name << " ends at (" << end[0] << ", " << end[1]
+                  << ") where no other curve starts";
+            reason = where.str();
+            return false;
+          }
+      }
+    return true;
+  }
+
+
+
   unsigned int
   BoundaryCurves::n_points() const
   {

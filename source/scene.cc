@@ -76,6 +76,7 @@ namespace bsmpm
     ImplicitBoundary::declare_parameters(prm);
     NitscheBoundary::declare_parameters(prm);
     GhostPenalty::declare_parameters(prm);
+    CutCellQuadrature::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
@@ -109,6 +110,7 @@ namespace bsmpm
     implicit_boundary.parse_parameters(prm);
     nitsche_boundary.parse_parameters(prm);
     ghost_penalty.parse_parameters(prm);
+    cut_cell_quadrature.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
@@ -146,14 +148,26 @@ namespace bsmpm
           points.track(tracked);
           boundary_curves.read_initial_positions(points);
         }
+      cut_cell_quadrature.initialize(boundary_curves);
     }
     check_supports();
     {
       TimerOutput::Scope t(timer, "setup: system");
-      kernel = std::make_unique<Q1CellKernel>(grid.fe(),
-                                              grid.cell_size(),
-                                              material.stiffness());
-      setup_system();
+      assembly = std::make_unique<SystemAssembly>(
+        SystemAssembly::Parts{grid,
+                              material,
+                              boundary_curves,
+                              neumann_loads,
+                              implicit_boundary,
+                              nitsche_boundary,
+                              ghost_penalty,
+                              exact_solution.get(),
+                              gravity},
+        timer);
+      assembly->setup();
+      increment.reinit(grid.locally_owned_dofs(),
+                       grid.locally_relevant_dofs(),
+                       communicator);
     }
 
     run_summary.scene   = scene_name;
@@ -185,98 +199,16 @@ namespace bsmpm
 
 
   void
-  Scene::setup_system()
-  {
-    // The couplings of the full grid: valid whichever cells hold points, so
-    // the sparsity pattern is built once for all load steps.
-    DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
-    if (ghost_penalty.enabled())
-      DoFTools::make_flux_sparsity_pattern(grid.dof_handler(), dsp);
-    else
-      DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
-    SparsityTools::distribute_sparsity_pattern(dsp,
-                                               grid.locally_owned_dofs(),
-                                               communicator,
-                                               grid.locally_relevant_dofs());
-    system_matrix.reinit(grid.locally_owned_dofs(),
-                         grid.locally_owned_dofs(),
-                         dsp,
-                         communicator);
-    system_rhs.reinit(grid.locally_owned_dofs(), communicator);
-    if (ImplicitBoundary::prescribes_displacement(boundary_curves))
-      fit_matrix.reinit(grid.locally_owned_dofs(),
-                        grid.locally_owned_dofs(),
-                        dsp,
-                        communicator);
-    increment.reinit(grid.locally_owned_dofs(),
-                     grid.locally_relevant_dofs(),
-                     communicator);
-  }
-
-
-
-  void
-  Scene::make_constraints()
-  {
-    TimerOutput::Scope t(timer, "constraints");
-    // A DoF none of whose cells holds material is fixed at zero, or K would
-    // be singular (method-notes Sec. 1, step 1).
-    // Supports of both components in a cell without material hold its DoFs
-    // too (a roller alone would leave them free to slide).
-    std::vector<bool> supporting(grid.triangulation().n_active_cells(), false);
-    if (!boundary_curves.empty())
-      {
-        for (const auto method :
-             {BoundaryCurve::DirichletMethod::implicit_boundary,
-              BoundaryCurve::DirichletMethod::nitsche})
-          boundary_curves.mark_support_cells(grid, method, true, supporting);
-      }
-    LinearAlgebra::distributed::Vector<double> support(
-      grid.locally_owned_dofs(), grid.locally_relevant_dofs(), communicator);
-    std::vector<types::global_dof_index> dof_indices(
-      Q1CellKernel::dofs_per_cell);
-    n_active_cells = 0;
-    for (const auto &cell : grid.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned() &&
-          (cell_moments[cell->active_cell_index()].v > 0 ||
-           supporting[cell->active_cell_index()]))
-        {
-          ++n_active_cells;
-          cell->get_dof_indices(dof_indices);
-          for (const auto i : dof_indices)
-            support(i) += 1;
-        }
-    support.compress(VectorOperation::add);
-    support.update_ghost_values();
-    n_active_cells = Utilities::MPI::sum(n_active_cells, communicator);
-
-    constraints.clear();
-    constraints.reinit(grid.locally_relevant_dofs());
-    unsupported_dofs.clear();
-    for (const auto i : grid.locally_relevant_dofs())
-      if (support(i) == 0.)
-        {
-          constraints.add_line(i);
-          if (grid.locally_owned_dofs().is_element(i))
-            unsupported_dofs.push_back(i);
-        }
-    grid.make_face_constraints(constraints);
-    constraints.close();
-  }
-
-
-
-  void
   Scene::fit_prescribed_displacement(const double increment_factor)
   {
     TimerOutput::Scope t(timer, "prescribed displacement fit");
     const double       misfit =
       implicit_boundary.fit_prescribed_displacement(boundary_curves,
                                                     grid,
-                                                    *kernel,
+                                                    assembly->kernel(),
                                                     exact_solution.get(),
                                                     increment_factor,
-                                                    fit_matrix,
+                                                    assembly->fit_matrix(),
                                                     prescribed);
     // The fit is linear in u^a: report the misfit of u^a itself.
     run_summary.quantities["boundary_fit_error"] = misfit / increment_factor;
@@ -285,114 +217,36 @@ namespace bsmpm
 
 
   void
-  Scene::assemble_system(const double load_factor,
-                         const double increment_factor)
+  Scene::compute_cell_moments()
   {
-    timer.enter_subsection("assembly");
-    system_matrix = 0;
-    system_rhs    = 0;
-
-    const Tensor<1, 2> body_force = load_factor * material.density() * gravity;
-    const bool         has_body_force = body_force.norm() > 0;
-
-    FullMatrix<double> cell_matrix(Q1CellKernel::dofs_per_cell,
-                                   Q1CellKernel::dofs_per_cell);
-    Vector<double>     cell_rhs(Q1CellKernel::dofs_per_cell);
-    Vector<double>     internal(Q1CellKernel::dofs_per_cell);
-    Vector<double>     da(Q1CellKernel::dofs_per_cell);
-    std::vector<types::global_dof_index> dof_indices(
-      Q1CellKernel::dofs_per_cell);
-
-    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+    TimerOutput::Scope t(timer, "assembly");
+    points.compute_cell_moments(cell_moments);
+    if (cut_cell_quadrature.active())
       {
-        if (!cell->is_locally_owned())
-          continue;
-        const CellMoments &m = cell_moments[cell->active_cell_index()];
-        if (m.v == 0.)
-          continue;
+        cut_cell_quadrature.correct_cell_moments(points, grid, cell_moments);
+        for (const auto &[name, count] : cut_cell_quadrature.statistics())
+          run_summary.quantities[name] = count;
+      }
+  }
 
-        cell_matrix = 0;
-        cell_rhs    = 0;
-        internal    = 0;
-        kernel->add_stiffness(m, cell_matrix);
-        kernel->add_internal_force(m, internal);
-        if (has_body_force)
-          kernel->add_body_force(m, body_force, cell_rhs);
-        cell_rhs -= internal;
 
-        cell->get_dof_indices(dof_indices);
-        // Material-point part of the force f^d of a prescribed displacement
-        // (eq. 33): the regular stiffness times d^a.
-        if (has_prescribed)
-          {
-            for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-              da[i] = prescribed(dof_indices[i]);
-            cell_matrix.vmult_add(internal = 0, da);
-            cell_rhs -= internal;
-          }
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
-      }
-    // No cell assembles into the rows of unsupported DoFs: give them a
-    // diagonal of the material's scale (their solution is zero).
-    for (const auto i : unsupported_dofs)
-      system_matrix.add(i, i, material.stiffness()[0][0]);
-    timer.leave_subsection("assembly");
-    if (ghost_penalty.enabled())
-      {
-        TimerOutput::Scope  t(timer, "ghost penalty");
-        std::vector<double> fraction(cell_moments.size());
-        const double        area = grid.cell_size()[0] * grid.cell_size()[1];
-        for (unsigned int c = 0; c < fraction.size(); ++c)
-          fraction[c] = cell_moments[c].v / area;
-        ghost_penalty.assemble(grid,
-                               *kernel,
-                               material.youngs_modulus(),
-                               fraction,
-                               has_prescribed ? &prescribed : nullptr,
-                               constraints,
-                               system_matrix,
-                               system_rhs);
-      }
-    if (boundary_curves.has_supports(
-          BoundaryCurve::DirichletMethod::implicit_boundary))
-      {
-        TimerOutput::Scope t(timer, "implicit boundary");
-        implicit_boundary.assemble(boundary_curves,
-                                   grid,
-                                   *kernel,
-                                   material.stiffness(),
-                                   has_prescribed ? &prescribed : nullptr,
-                                   constraints,
-                                   system_matrix,
-                                   system_rhs);
-      }
-    if (boundary_curves.has_supports(BoundaryCurve::DirichletMethod::nitsche))
-      {
-        TimerOutput::Scope t(timer, "nitsche");
-        nitsche_boundary.assemble(boundary_curves,
-                                  grid,
-                                  *kernel,
-                                  material,
-                                  exact_solution.get(),
-                                  increment_factor,
-                                  constraints,
-                                  system_matrix,
-                                  system_rhs);
-      }
-    if (boundary_curves.has_loads())
-      {
-        TimerOutput::Scope t(timer, "neumann loads");
-        neumann_loads.assemble(boundary_curves,
-                               grid,
-                               *kernel,
-                               exact_solution.get(),
-                               load_factor,
-                               constraints,
-                               system_rhs);
-      }
-    system_matrix.compress(VectorOperation::add);
-    system_rhs.compress(VectorOperation::add);
+
+  std::vector<double>
+  Scene::fill_fractions() const
+  {
+    std::vector<double> fraction(grid.triangulation().n_active_cells(), 0.);
+    const double        area = grid.cell_size()[0] * grid.cell_size()[1];
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int c = cell->active_cell_index();
+          fraction[c] =
+            cut_cell_quadrature.active() ?
+              cut_cell_quadrature.geometry().fraction(
+                grid.cell_index(cell->center())) :
+              (cell_moments.empty() ? 0. : cell_moments[c].v / area);
+        }
+    return fraction;
   }
 
 
@@ -403,11 +257,11 @@ namespace bsmpm
     TimerOutput::Scope            t(timer, "solve");
     TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
                                            communicator);
-    const auto                    report = linear_solver.solve(system_matrix,
+    const auto report = linear_solver.solve(assembly->matrix(),
                                             solution,
-                                            system_rhs,
+                                            assembly->rhs(),
                                             grid.dof_handler());
-    constraints.distribute(solution);
+    assembly->constraints().distribute(solution);
 
     for (const auto i : grid.locally_owned_dofs())
       increment(i) = solution(i);
@@ -433,7 +287,7 @@ namespace bsmpm
           band_cells);
       }
     const auto report =
-      points.move(*kernel,
+      points.move(assembly->kernel(),
                   material,
                   increment,
                   has_prescribed ? &prescribed : nullptr,
@@ -475,6 +329,7 @@ namespace bsmpm
       return;
     TimerOutput::Scope t(timer, "curves");
     boundary_curves.update(points, grid);
+    cut_cell_quadrature.update_geometry(boundary_curves, grid);
   }
 
 
@@ -493,16 +348,12 @@ namespace bsmpm
                                                       "displacement_increment"),
                              DataOut<2>::type_dof_data,
                              vector_field);
-    Vector<float> fill(grid.triangulation().n_active_cells());
-    Vector<float> subdomain(grid.triangulation().n_active_cells());
-    const double  cell_area = grid.cell_size()[0] * grid.cell_size()[1];
+    const std::vector<double> fraction = fill_fractions();
+    Vector<float>             fill(fraction.begin(), fraction.end());
+    Vector<float>             subdomain(grid.triangulation().n_active_cells());
     for (const auto &cell : grid.triangulation().active_cell_iterators())
       if (cell->is_locally_owned())
-        {
-          const unsigned int c = cell->active_cell_index();
-          fill[c] = cell_moments.empty() ? 0. : cell_moments[c].v / cell_area;
-          subdomain[c] = cell->subdomain_id();
-        }
+        subdomain[cell->active_cell_index()] = cell->subdomain_id();
     grid_out.add_data_vector(fill, "material_fraction");
     grid_out.add_data_vector(subdomain, "subdomain");
     grid_out.build_patches();
@@ -599,22 +450,24 @@ namespace bsmpm
             TimerOutput::Scope t(timer, "sort points");
             points.sort_into_cells();
           }
-        {
-          TimerOutput::Scope t(timer, "assembly");
-          points.compute_cell_moments(cell_moments);
-        }
-        make_constraints();
+        compute_cell_moments();
+        assembly->make_constraints(cell_moments);
         has_prescribed =
           ImplicitBoundary::prescribes_displacement(boundary_curves);
         if (has_prescribed)
           fit_prescribed_displacement(1. / n_load_steps);
-        assemble_system(load_factor, 1. / n_load_steps);
-        if (linear_solver.estimates_condition() && system_rhs.l2_norm() > 0)
+        assembly->assemble(load_factor,
+                           1. / n_load_steps,
+                           cell_moments,
+                           fill_fractions(),
+                           has_prescribed ? &prescribed : nullptr);
+        if (linear_solver.estimates_condition() &&
+            assembly->rhs().l2_norm() > 0)
           {
             TimerOutput::Scope t(timer, "condition estimate");
             const double       estimate =
-              linear_solver.estimate_condition_number(system_matrix,
-                                                      system_rhs);
+              linear_solver.estimate_condition_number(assembly->matrix(),
+                                                      assembly->rhs());
             double &largest = run_summary.quantities["condition_estimate"];
             largest         = std::max(largest, estimate);
           }
@@ -645,7 +498,7 @@ namespace bsmpm
         record.iterations        = solver_report.iterations;
         record.refinement_steps  = solver_report.refinement_steps;
         record.relative_residual = solver_report.relative_residual;
-        record.n_active_cells    = n_active_cells;
+        record.n_active_cells    = assembly->n_active_cells();
         run_summary.steps.push_back(record);
         if (pcout.is_active())
           run_summary.print_step(pcout.get_stream(), record);

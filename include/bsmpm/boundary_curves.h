@@ -227,6 +227,18 @@ namespace bsmpm
     bool
     has_supports(const BoundaryCurve::DirichletMethod method) const;
 
+    /**
+     * Whether the curves together are the whole boundary of the body, so
+     * that the region they enclose is the body (CutCellGeometry): they form
+     * closed loops (a closed curve, or open curves each ending where another
+     * starts), and every curve lies on the body's boundary: its points are
+     * tracking points, or material points whose volumes are halved (without
+     * that, the points' volumes reach beyond the curve). If not, @p reason
+     * says why; otherwise it is left empty.
+     */
+    bool
+    encloses_body(std::string &reason) const;
+
     /** Total number of boundary points. */
     unsigned int
     n_points() const;

@@ -13,6 +13,7 @@
 #include <bsmpm/background_grid.h>
 #include <bsmpm/body_region.h>
 #include <bsmpm/boundary_curves.h>
+#include <bsmpm/cut_cell_quadrature.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/ghost_penalty.h>
 #include <bsmpm/implicit_boundary.h>
@@ -25,6 +26,7 @@
 #include <bsmpm/output_writer.h>
 #include <bsmpm/q1_cell_kernel.h>
 #include <bsmpm/run_summary.h>
+#include <bsmpm/system_assembly.h>
 #include <bsmpm/verification.h>
 
 #include <memory>
@@ -72,17 +74,17 @@ namespace bsmpm
   private:
     void
     setup();
-    void
-    setup_system();
     /** Throws if nothing holds the body against rigid motion. */
     void
     check_supports() const;
     void
-    make_constraints();
-    void
     fit_prescribed_displacement(const double increment_factor);
+    /** Material moments of every cell, plain or by the cut-cell quadrature. */
     void
-    assemble_system(const double load_factor, const double increment_factor);
+    compute_cell_moments();
+    /** Fill fraction of every locally owned cell. */
+    std::vector<double>
+    fill_fractions() const;
     LinearSolver::Report
     solve();
     void
@@ -101,39 +103,33 @@ namespace bsmpm
     mutable TimerOutput timer;
     Timer               total_timer;
 
-    std::string                    scene_name;
-    unsigned int                   n_load_steps = 1;
-    Tensor<1, 2>                   gravity;
-    BackgroundGrid                 grid;
-    LinearElasticMaterial          material;
-    BodyRegion                     region;
-    MaterialPointLayout            layout;
-    MaterialPoints                 points;
-    BoundaryCurves                 boundary_curves;
-    NeumannLoads                   neumann_loads;
-    ImplicitBoundary               implicit_boundary;
-    NitscheBoundary                nitsche_boundary;
-    GhostPenalty                   ghost_penalty;
-    LinearSolver                   linear_solver;
-    OutputWriter                   output;
-    Verification                   verification;
-    std::unique_ptr<ExactSolution> exact_solution;
-    std::unique_ptr<Q1CellKernel>  kernel;
+    std::string                     scene_name;
+    unsigned int                    n_load_steps = 1;
+    Tensor<1, 2>                    gravity;
+    BackgroundGrid                  grid;
+    LinearElasticMaterial           material;
+    BodyRegion                      region;
+    MaterialPointLayout             layout;
+    MaterialPoints                  points;
+    BoundaryCurves                  boundary_curves;
+    NeumannLoads                    neumann_loads;
+    ImplicitBoundary                implicit_boundary;
+    NitscheBoundary                 nitsche_boundary;
+    GhostPenalty                    ghost_penalty;
+    CutCellQuadrature               cut_cell_quadrature;
+    LinearSolver                    linear_solver;
+    OutputWriter                    output;
+    Verification                    verification;
+    std::unique_ptr<ExactSolution>  exact_solution;
+    std::unique_ptr<SystemAssembly> assembly;
 
-    AffineConstraints<double>                  constraints;
-    TrilinosWrappers::SparseMatrix             system_matrix;
-    TrilinosWrappers::MPI::Vector              system_rhs;
     LinearAlgebra::distributed::Vector<double> increment;
     /** Nodal values d^a of the prescribed displacement increment (IBM). */
     LinearAlgebra::distributed::Vector<double> prescribed;
     bool                                       has_prescribed = false;
-    TrilinosWrappers::SparseMatrix             fit_matrix;
     /** Locally owned cells crossed by an IBM support band. */
     std::vector<bool>        band_cells;
     std::vector<CellMoments> cell_moments;
-    unsigned int             n_active_cells = 0;
-    /** Locally owned DoFs that no cell with material touches. */
-    std::vector<types::global_dof_index> unsupported_dofs;
 
     /** An optional zero-volume point whose displacement is reported. */
     std::string  probe_name;

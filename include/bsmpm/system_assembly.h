@@ -1,0 +1,139 @@
+#ifndef bsmpm_system_assembly_h
+#define bsmpm_system_assembly_h
+
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/background_grid.h>
+#include <bsmpm/boundary_curves.h>
+#include <bsmpm/exact_solution.h>
+#include <bsmpm/ghost_penalty.h>
+#include <bsmpm/implicit_boundary.h>
+#include <bsmpm/material.h>
+#include <bsmpm/neumann_loads.h>
+#include <bsmpm/nitsche_boundary.h>
+#include <bsmpm/q1_cell_kernel.h>
+
+#include <memory>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The linear system K du = r of a load step (method-notes Sec. 1):
+   *
+   * - constraints: the DoFs that no cell with material (or crossed by a
+   *   support) touches are fixed at zero, or K would be singular; the grid's
+   *   face supports;
+   * - K and r = f_ext(lambda) - f_int(sigma_n) from the cell moments of the
+   *   material points (Q1CellKernel), the ghost penalty, the supports on
+   *   the boundary curves (implicit boundary method, Nitsche) and the loads
+   *   on them.
+   *
+   * The sparsity pattern holds the couplings of the full grid, so it is
+   * built once for all load steps, whichever cells hold material.
+   */
+  class SystemAssembly
+  {
+  public:
+    /** What the system is made of; all owned by the caller. */
+    struct Parts
+    {
+      const BackgroundGrid        &grid;
+      const LinearElasticMaterial &material;
+      const BoundaryCurves        &curves;
+      NeumannLoads                &neumann_loads;
+      ImplicitBoundary            &implicit_boundary;
+      const NitscheBoundary       &nitsche_boundary;
+      const GhostPenalty          &ghost_penalty;
+      /** The scene's exact solution, or nullptr. */
+      const ExactSolution *exact_solution;
+      /** Gravitational acceleration (the body force is density times it). */
+      Tensor<1, 2> gravity;
+    };
+
+    SystemAssembly(const Parts &parts, TimerOutput &timer);
+
+    /** Builds the sparsity pattern, matrix and vectors; makes the kernel. */
+    void
+    setup();
+
+    const Q1CellKernel &
+    kernel() const
+    {
+      return *cell_kernel;
+    }
+
+    /** Constrains the DoFs that no cell with material (moments by
+     * active_cell_index()) supports, and adds the grid's face supports. */
+    void
+    make_constraints(const std::vector<CellMoments> &moments);
+
+    /**
+     * Assembles K and r for load factor @p load_factor, the load increment
+     * of the step being @p increment_factor (prescribed displacements are
+     * applied incrementally). @p fraction: fill fraction of every locally
+     * owned cell (for the ghost penalty). @p prescribed: the nodal values
+     * d^a of an IBM prescribed displacement increment, or nullptr.
+     */
+    void
+    assemble(const double                                      load_factor,
+             const double                                      increment_factor,
+             const std::vector<CellMoments>                   &moments,
+             const std::vector<double>                        &fraction,
+             const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    const AffineConstraints<double> &
+    constraints() const
+    {
+      return system_constraints;
+    }
+    const TrilinosWrappers::SparseMatrix &
+    matrix() const
+    {
+      return system_matrix;
+    }
+    const TrilinosWrappers::MPI::Vector &
+    rhs() const
+    {
+      return system_rhs;
+    }
+    /** A matrix with the system's sparsity pattern for the IBM
+     * least-squares fit of prescribed displacements (set up only when the
+     * curves prescribe one). */
+    TrilinosWrappers::SparseMatrix &
+    fit_matrix()
+    {
+      return boundary_fit_matrix;
+    }
+
+    /** Number of cells with material or supports, over all processes, at
+     * the last make_constraints(). */
+    unsigned int
+    n_active_cells() const
+    {
+      return active_cells;
+    }
+
+  private:
+    Parts        parts;
+    TimerOutput &timer;
+
+    std::unique_ptr<Q1CellKernel>  cell_kernel;
+    AffineConstraints<double>      system_constraints;
+    TrilinosWrappers::SparseMatrix system_matrix;
+    TrilinosWrappers::MPI::Vector  system_rhs;
+    TrilinosWrappers::SparseMatrix boundary_fit_matrix;
+    /** Locally owned DoFs that no cell with material touches. */
+    std::vector<types::global_dof_index> unsupported_dofs;
+    unsigned int                         active_cells = 0;
+  };
+} // namespace bsmpm
+
+#endif

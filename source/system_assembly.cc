@@ -1,0 +1,218 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <bsmpm/system_assembly.h>
+
+namespace bsmpm
+{
+  SystemAssembly::SystemAssembly(const Parts &parts, TimerOutput &timer)
+    : parts(parts)
+    , timer(timer)
+  {}
+
+
+
+  void
+  SystemAssembly::setup()
+  {
+    const BackgroundGrid &grid = parts.grid;
+    cell_kernel                = std::make_unique<Q1CellKernel>(grid.fe(),
+                                                 grid.cell_size(),
+                                                 parts.material.stiffness());
+
+    // The couplings of the full grid: valid whichever cells hold points, so
+    // the sparsity pattern is built once for all load steps.
+    const MPI_Comm         comm = grid.mpi_communicator();
+    DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
+    if (parts.ghost_penalty.enabled())
+      DoFTools::make_flux_sparsity_pattern(grid.dof_handler(), dsp);
+    else
+      DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               grid.locally_owned_dofs(),
+                                               comm,
+                                               grid.locally_relevant_dofs());
+    system_matrix.reinit(grid.locally_owned_dofs(),
+                         grid.locally_owned_dofs(),
+                         dsp,
+                         comm);
+    system_rhs.reinit(grid.locally_owned_dofs(), comm);
+    if (ImplicitBoundary::prescribes_displacement(parts.curves))
+      boundary_fit_matrix.reinit(grid.locally_owned_dofs(),
+                                 grid.locally_owned_dofs(),
+                                 dsp,
+                                 comm);
+  }
+
+
+
+  void
+  SystemAssembly::make_constraints(const std::vector<CellMoments> &moments)
+  {
+    TimerOutput::Scope    t(timer, "constraints");
+    const BackgroundGrid &grid = parts.grid;
+    const MPI_Comm        comm = grid.mpi_communicator();
+    // A DoF none of whose cells holds material is fixed at zero, or K would
+    // be singular (method-notes Sec. 1, step 1).
+    // Supports of both components in a cell without material hold its DoFs
+    // too (a roller alone would leave them free to slide).
+    std::vector<bool> supporting(grid.triangulation().n_active_cells(), false);
+    if (!parts.curves.empty())
+      {
+        for (const auto method :
+             {BoundaryCurve::DirichletMethod::implicit_boundary,
+              BoundaryCurve::DirichletMethod::nitsche})
+          parts.curves.mark_support_cells(grid, method, true, supporting);
+      }
+    LinearAlgebra::distributed::Vector<double> support(
+      grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    active_cells = 0;
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned() &&
+          (moments[cell->active_cell_index()].v > 0 ||
+           supporting[cell->active_cell_index()]))
+        {
+          ++active_cells;
+          cell->get_dof_indices(dof_indices);
+          for (const auto i : dof_indices)
+            support(i) += 1;
+        }
+    support.compress(VectorOperation::add);
+    support.update_ghost_values();
+    active_cells = Utilities::MPI::sum(active_cells, comm);
+
+    system_constraints.clear();
+    system_constraints.reinit(grid.locally_relevant_dofs());
+    unsupported_dofs.clear();
+    for (const auto i : grid.locally_relevant_dofs())
+      if (support(i) == 0.)
+        {
+          system_constraints.add_line(i);
+          if (grid.locally_owned_dofs().is_element(i))
+            unsupported_dofs.push_back(i);
+        }
+    grid.make_face_constraints(system_constraints);
+    system_constraints.close();
+  }
+
+
+
+  void
+  SystemAssembly::assemble(
+    const double                                      load_factor,
+    const double                                      increment_factor,
+    const std::vector<CellMoments>                   &moments,
+    const std::vector<double>                        &fraction,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    const BackgroundGrid &grid        = parts.grid;
+    const Q1CellKernel   &kernel      = *cell_kernel;
+    const auto           &constraints = system_constraints;
+    timer.enter_subsection("assembly");
+    system_matrix = 0;
+    system_rhs    = 0;
+
+    const Tensor<1, 2> body_force =
+      load_factor * parts.material.density() * parts.gravity;
+    const bool has_body_force = body_force.norm() > 0;
+
+    constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n), internal(n), da(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const CellMoments &m = moments[cell->active_cell_index()];
+        if (m.v == 0.)
+          continue;
+
+        cell_matrix = 0;
+        cell_rhs    = 0;
+        internal    = 0;
+        kernel.add_stiffness(m, cell_matrix);
+        kernel.add_internal_force(m, internal);
+        if (has_body_force)
+          kernel.add_body_force(m, body_force, cell_rhs);
+        cell_rhs -= internal;
+
+        cell->get_dof_indices(dof_indices);
+        // Material-point part of the force f^d of a prescribed displacement
+        // (eq. 33): the regular stiffness times d^a.
+        if (prescribed)
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              da[i] = (*prescribed)(dof_indices[i]);
+            cell_matrix.vmult_add(internal = 0, da);
+            cell_rhs -= internal;
+          }
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+      }
+    // No cell assembles into the rows of unsupported DoFs: give them a
+    // diagonal of the material's scale (their solution is zero).
+    for (const auto i : unsupported_dofs)
+      system_matrix.add(i, i, parts.material.stiffness()[0][0]);
+    timer.leave_subsection("assembly");
+
+    if (parts.ghost_penalty.enabled())
+      {
+        TimerOutput::Scope t(timer, "ghost penalty");
+        parts.ghost_penalty.assemble(grid,
+                                     kernel,
+                                     parts.material.youngs_modulus(),
+                                     fraction,
+                                     prescribed,
+                                     constraints,
+                                     system_matrix,
+                                     system_rhs);
+      }
+    if (parts.curves.has_supports(
+          BoundaryCurve::DirichletMethod::implicit_boundary))
+      {
+        TimerOutput::Scope t(timer, "implicit boundary");
+        parts.implicit_boundary.assemble(parts.curves,
+                                         grid,
+                                         kernel,
+                                         parts.material.stiffness(),
+                                         prescribed,
+                                         constraints,
+                                         system_matrix,
+                                         system_rhs);
+      }
+    if (parts.curves.has_supports(BoundaryCurve::DirichletMethod::nitsche))
+      {
+        TimerOutput::Scope t(timer, "nitsche");
+        parts.nitsche_boundary.assemble(parts.curves,
+                                        grid,
+                                        kernel,
+                                        parts.material,
+                                        parts.exact_solution,
+                                        increment_factor,
+                                        constraints,
+                                        system_matrix,
+                                        system_rhs);
+      }
+    if (parts.curves.has_loads())
+      {
+        TimerOutput::Scope t(timer, "neumann loads");
+        parts.neumann_loads.assemble(parts.curves,
+                                     grid,
+                                     kernel,
+                                     parts.exact_solution,
+                                     load_factor,
+                                     constraints,
+                                     system_rhs);
+      }
+    system_matrix.compress(VectorOperation::add);
+    system_rhs.compress(VectorOperation::add);
+  }
+} // namespace bsmpm
