@@ -3,6 +3,7 @@
 #include <bsmpm/body_region.h>
 #include <bsmpm/parameter_tools.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -230,18 +231,13 @@ namespace bsmpm
 
 
 
-  BodyRegion::BoundaryPoints
-  BodyRegion::boundary_points(const std::string &edge,
-                              const unsigned int n) const
+  void
+  BodyRegion::boundary_parts(
+    std::vector<std::string>                           &names,
+    std::vector<std::function<Point<2>(const double)>> &parts) const
   {
-    AssertThrow(n >= 2,
-                ExcMessage("Boundary curves: at least 2 points per edge are "
-                           "needed, got " +
-                           std::to_string(n) + "."));
-    // The parts of the boundary, each from its first point to its last, in
-    // counter-clockwise order round the body.
-    std::vector<std::string>                           names;
-    std::vector<std::function<Point<2>(const double)>> parts;
+    names.clear();
+    parts.clear();
     if (region_shape == Shape::annulus_sector)
       {
         const Sector &a = annulus;
@@ -267,17 +263,121 @@ namespace bsmpm
       }
     else
       {
-        AssertThrow(region_shape != Shape::rectangle_minus_disc ||
-                      edge != "boundary",
-                    ExcMessage("Boundary curves: the whole boundary of a "
-                               "rectangle minus a disc is not available as a "
-                               "region edge; give its parts."));
-        const auto c = corners();
-        for (unsigned int k = 0; k < 4; ++k)
-          parts.push_back([p0 = c[k], p1 = c[(k + 1) % 4]](const double f) {
-            return Point<2>(p0 + f * (p1 - p0));
-          });
-        names = {"bottom", "right", "top", "left"};
+        const auto                       c          = corners();
+        const std::array<std::string, 4> edge_names = {
+          {"bottom", "right", "top", "left"}};
+        const auto segment = [](const Point<2> p0, const Point<2> p1) {
+          return [=](const double f) { return Point<2>(p0 + f * (p1 - p0)); };
+        };
+        if (region_shape != Shape::rectangle_minus_disc)
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              names.push_back(edge_names[k]);
+              parts.push_back(segment(c[k], c[(k + 1) % 4]));
+            }
+        else
+          {
+            // Walk round the rectangle; where the disc meets an edge, the
+            // edge stops at the disc and the hole's arc (clockwise, the
+            // body on its left) leads to where the boundary goes on.
+            const Point<2> C   = disc_center;
+            const double   r   = disc_radius;
+            const double   eps = 1e-12 * (upper_right - lower_left).norm();
+            const auto     arc = [C, r](const Point<2> a, const Point<2> b) {
+              const double t0    = std::atan2(a[1] - C[1], a[0] - C[0]);
+              double       sweep = t0 - std::atan2(b[1] - C[1], b[0] - C[0]);
+              sweep -= 2 * numbers::PI * std::floor(sweep / (2 * numbers::PI));
+              if (sweep == 0)
+                sweep = 2 * numbers::PI;
+              return [=](const double f) {
+                return Point<2>(C[0] + r * std::cos(t0 - f * sweep),
+                                C[1] + r * std::sin(t0 - f * sweep));
+              };
+            };
+            bool     open_arc = false; // an arc waits for its end point
+            Point<2> arc_start;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                const Point<2>     p0 = c[k], p1 = c[(k + 1) % 4];
+                const double       L   = p0.distance(p1);
+                const Tensor<1, 2> e   = (p1 - p0) / L;
+                const Tensor<1, 2> d   = C - p0;
+                const double       tau = d * e;
+                const bool         on_edge =
+                  std::abs(d[0] * e[1] - d[1] * e[0]) < eps && tau > -eps &&
+                  tau < L + eps;
+                double begin = 0, end = L;
+                if (on_edge && tau < eps)
+                  begin = r;
+                const bool splits = on_edge && tau >= eps && tau <= L - eps;
+                const bool ends   = on_edge && tau > L - eps;
+                if (open_arc)
+                  {
+                    names.push_back("hole");
+                    parts.push_back(arc(arc_start, p0 + begin * e));
+                    open_arc = false;
+                  }
+                if (splits)
+                  {
+                    names.push_back(edge_names[k]);
+                    parts.push_back(segment(p0, p0 + (tau - r) * e));
+                    names.push_back("hole");
+                    parts.push_back(
+                      arc(p0 + (tau - r) * e, p0 + (tau + r) * e));
+                    begin = tau + r;
+                  }
+                if (ends)
+                  end = L - r;
+                names.push_back(edge_names[k]);
+                parts.push_back(segment(p0 + begin * e, p0 + end * e));
+                if (ends)
+                  {
+                    open_arc  = true;
+                    arc_start = p0 + end * e;
+                  }
+              }
+            if (open_arc) // the disc sits on the first corner
+              {
+                names.insert(names.begin(), "hole");
+                parts.insert(parts.begin(),
+                             arc(arc_start,
+                                 c[0] +
+                                   r * (c[1] - c[0]) / c[0].distance(c[1])));
+              }
+          }
+      }
+  }
+
+
+
+  BodyRegion::BoundaryPoints
+  BodyRegion::boundary_points(const std::string &edge,
+                              const unsigned int n) const
+  {
+    AssertThrow(n >= 2,
+                ExcMessage("Boundary curves: at least 2 points per edge are "
+                           "needed, got " +
+                           std::to_string(n) + "."));
+    // The parts of the boundary, each from its first point to its last, in
+    // counter-clockwise order round the body.
+    std::vector<std::string>                           names;
+    std::vector<std::function<Point<2>(const double)>> parts;
+    boundary_parts(names, parts);
+    // A disc inside the rectangle is a hole of its own: a closed curve.
+    if (region_shape == Shape::rectangle_minus_disc && edge == "hole" &&
+        std::find(names.begin(), names.end(), "hole") == names.end())
+      {
+        BoundaryPoints result;
+        result.closed = true;
+        for (unsigned int i = 0; i + 1 < n; ++i)
+          {
+            const double t = -2 * numbers::PI * i / (n - 1);
+            result.points.emplace_back(disc_center[0] +
+                                         disc_radius * std::cos(t),
+                                       disc_center[1] +
+                                         disc_radius * std::sin(t));
+          }
+        return result;
       }
 
     BoundaryPoints result;
@@ -300,6 +400,11 @@ namespace bsmpm
           }
         return result;
       }
+    AssertThrow(std::count(names.begin(), names.end(), edge) <= 1,
+                ExcMessage("Boundary curves: the hole splits the edge '" +
+                           edge +
+                           "' of the body region in two; give its parts "
+                           "by coordinates, or use 'boundary'."));
     for (unsigned int k = 0; k < names.size(); ++k)
       if (names[k] == edge)
         {

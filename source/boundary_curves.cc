@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace bsmpm
@@ -360,9 +361,54 @@ namespace bsmpm
 
 
   void
+  BoundaryCurves::complete_region_boundary(const BodyRegion     &region,
+                                           const BackgroundGrid &grid)
+  {
+    std::set<std::string> used;
+    for (const auto &source : sources)
+      {
+        if (source.kind != "region edge")
+          return;
+        used.insert(source.edge);
+      }
+    if (used.empty() || used.count("boundary") > 0)
+      return;
+    const auto names = region.boundary_part_names();
+    for (const auto &name : names)
+      if (used.count(name) == 0 &&
+          std::count(names.begin(), names.end(), name) > 1)
+        return; // a part the region cannot name on its own
+
+    for (const auto &name : names)
+      if (used.count(name) == 0)
+        {
+          // Tracking points about one cell apart, so that the curve follows
+          // the body as it deforms.
+          const auto fine   = region.boundary_points(name, 129).points;
+          double     length = 0;
+          for (unsigned int i = 1; i < fine.size(); ++i)
+            length += fine[i].distance(fine[i - 1]);
+          Source source;
+          source.kind     = "region edge";
+          source.edge     = name;
+          source.n_points = std::max<unsigned int>(
+            2, std::ceil(length / grid.min_cell_size() - 1e-9) + 1);
+          BoundaryCurve curve;
+          curve.name = "free " + name + " (completes the boundary)";
+          curve.conditions.push_back(CurveCondition());
+          curves.push_back(std::move(curve));
+          sources.push_back(source);
+          used.insert(name);
+        }
+  }
+
+
+
+  void
   BoundaryCurves::create_initial_curves(const BodyRegion     &region,
                                         const BackgroundGrid &grid)
   {
+    complete_region_boundary(region, grid);
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
         BoundaryCurve &curve  = curves[c];

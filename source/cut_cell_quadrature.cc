@@ -248,6 +248,7 @@ namespace bsmpm
       }
 
     counts["cut_cells"]           = Utilities::MPI::sum(n_cut, comm);
+    counts["body_area"]           = cut_geometry.area();
     counts["cut_cells_fit6"]      = Utilities::MPI::sum(n_fitted[6], comm);
     counts["cut_cells_fit3"]      = Utilities::MPI::sum(n_fitted[3], comm);
     counts["cut_cells_fit1"]      = Utilities::MPI::sum(n_fitted[1], comm);

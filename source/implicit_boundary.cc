@@ -49,13 +49,19 @@ namespace bsmpm
                       "3",
                       Patterns::Integer(1),
                       "Gauss points across the band (paper: 3).");
-    prm.declare_entry("Roller form",
-                      "frame",
-                      Patterns::Selection("frame|paper"),
-                      "frame: the displacement's normal component in the "
-                      "boundary frame carries the D-function (exact on "
-                      "inclined boundaries); paper: the band strain of eqs. "
-                      "22-26 with the rotation J_T.");
+    prm.declare_entry(
+      "Formulation",
+      "consistent",
+      Patterns::Selection("consistent|frame|paper"),
+      "consistent: u = w - (1 - D) P w(x_b), with w(x_b) the grid field at "
+      "the boundary point nearest to x and P the identity (fixed) or n n "
+      "(roller); the band's own stiffness replaces the regular one there, "
+      "so a linear field that meets the support is reproduced exactly "
+      "whatever the band width (doc/implicit-boundary.md). frame: u = D w "
+      "(fixed) or w - (1 - D)(w.n) n (roller), band terms k2 + k2^T + k3 "
+      "added to the regular stiffness: O(delta) errors. paper: as frame, "
+      "but rollers by the band strain of eqs. 22-26 with the rotation "
+      "J_T.");
     prm.leave_subsection();
   }
 
@@ -65,10 +71,13 @@ namespace bsmpm
   ImplicitBoundary::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Implicit boundary");
-    relative_band_width = prm.get_double("Relative band width");
-    points_along        = prm.get_integer("Points along piece");
-    points_across       = prm.get_integer("Points across band");
-    paper_roller_form   = prm.get("Roller form") == "paper";
+    relative_band_width    = prm.get_double("Relative band width");
+    points_along           = prm.get_integer("Points along piece");
+    points_across          = prm.get_integer("Points across band");
+    const std::string form = prm.get("Formulation");
+    formulation            = form == "consistent" ? Formulation::consistent :
+                             form == "frame"      ? Formulation::frame :
+                                                    Formulation::paper;
     prm.leave_subsection();
     AssertThrow(relative_band_width > 0 && relative_band_width <= 1,
                 ExcMessage("Implicit boundary: the relative band width must "
@@ -121,6 +130,7 @@ namespace bsmpm
     Vector<double>                       cell_rhs(n);
     std::vector<types::global_dof_index> dof_indices(n);
     std::array<Voigt, n>                 B1, B2, CB1, CB2;
+    std::array<Tensor<1, 2>, n>          trace, trace_dt;
     Q1CellKernel::LocalVector            da;
 
     for (const auto &curve : curves.get_curves())
@@ -149,9 +159,18 @@ namespace bsmpm
               const double       u = piece.u_begin + along.point(q)[0] * du;
               const Point<2>     c = spline.value(u);
               const Tensor<1, 2> normal = -spline.outward_normal(u); // inward
+              const Tensor<1, 2> tangent({-normal[1], normal[0]});
               const double       ds =
                 spline.derivative(u).norm() * du * along.weight(q);
-              const Tensor<2, 2> nn = outer_product(normal, normal);
+              const Tensor<2, 2> nn   = outer_product(normal, normal);
+              const Point<2>     st_c = grid.local_coordinates(c, piece.cell);
+              // The grid field on the boundary: its value and derivative
+              // along the boundary, per shape function.
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  trace[i]    = kernel.shape_value(i, st_c);
+                  trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent;
+                }
 
               for (unsigned int r = 0; r < across.size(); ++r)
                 {
@@ -162,6 +181,46 @@ namespace bsmpm
                   const Point<2> x   = c + phi * normal;
                   const Point<2> st  = grid.local_coordinates(x, piece.cell);
                   points.push_back({x, D, w});
+
+                  Voigt strain_a;
+                  if (prescribed)
+                    for (unsigned int i = 0; i < n; ++i)
+                      strain_a += da[i] * kernel.strain_column(i, st);
+
+                  if (formulation == Formulation::consistent)
+                    {
+                      // u = w - (1 - D) P w(c): its strain is B + Delta,
+                      // with Delta the band's correction to the regular
+                      // strain B, which the material points integrate.
+                      for (unsigned int i = 0; i < n; ++i)
+                        {
+                          B1[i] = kernel.strain_column(i, st);
+                          if (roller)
+                            B2[i] = voigt(dD * (trace[i] * normal) * nn -
+                                          (1 - D) * (trace_dt[i] * normal) *
+                                            outer_product(normal, tangent));
+                          else
+                            B2[i] = voigt(
+                              dD * outer_product(trace[i], normal) -
+                              (1 - D) * outer_product(trace_dt[i], tangent));
+                          CB1[i] = C * B1[i];
+                          CB2[i] = C * B2[i];
+                        }
+                      // (B + Delta)^T C (B + Delta) - B^T C B.
+                      for (unsigned int i = 0; i < n; ++i)
+                        for (unsigned int j = 0; j < n; ++j)
+                          cell_matrix(i, j) +=
+                            w *
+                            (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+                      // Band part of f^d: int Delta^T C B d^a.
+                      if (prescribed)
+                        {
+                          const Voigt sigma_a = C * strain_a;
+                          for (unsigned int i = 0; i < n; ++i)
+                            cell_rhs[i] -= w * B2[i] * sigma_a;
+                        }
+                      continue;
+                    }
 
                   // u = P(D) w: grad u = P grad w + (dP/dphi) w (x) n.
                   Tensor<2, 2> P, dP;
@@ -175,12 +234,11 @@ namespace bsmpm
                       P  = D * unit_symmetric_tensor<2>();
                       dP = dD * unit_symmetric_tensor<2>();
                     }
-                  Voigt strain_a;
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       const Tensor<1, 2> value = kernel.shape_value(i, st);
                       B1[i] = voigt(P * kernel.shape_gradient(i, st));
-                      if (roller && paper_roller_form)
+                      if (roller && formulation == Formulation::paper)
                         // eqs. 23-26: (d D / d x, d D / d y) of the normal
                         // component, which J_T extracts from w.
                         B2[i] = dD * (normal * value) *
@@ -189,8 +247,6 @@ namespace bsmpm
                         B2[i] = voigt(outer_product(dP * value, normal));
                       CB1[i] = C * B1[i];
                       CB2[i] = C * B2[i];
-                      if (prescribed)
-                        strain_a += da[i] * kernel.strain_column(i, st);
                     }
                   // k2 + k2^T + k3 (eqs. 24, 25).
                   for (unsigned int i = 0; i < n; ++i)
@@ -377,10 +433,12 @@ namespace bsmpm
 
 
   double
-  ImplicitBoundary::support_displacement(const BoundaryCurves &curves,
-                                         const BackgroundGrid &grid,
-                                         const Point<2>       &x,
-                                         Tensor<1, 2>         &w) const
+  ImplicitBoundary::support_displacement(
+    const BoundaryCurves                                &curves,
+    const BackgroundGrid                                &grid,
+    const Point<2>                                      &x,
+    const std::function<Tensor<1, 2>(const Point<2> &)> &field,
+    Tensor<1, 2>                                        &w) const
   {
     const double delta = band_width(grid);
     const auto   ij    = grid.cell_index(x);
@@ -388,6 +446,7 @@ namespace bsmpm
     double                smallest = std::numeric_limits<double>::max();
     double                phi_min  = 0;
     Tensor<1, 2>          n_min;
+    Point<2>              foot;
     const CurveCondition *nearest = nullptr;
     for (const auto &curve : curves.get_curves())
       for (const auto &piece : curve.pieces)
@@ -434,6 +493,7 @@ namespace bsmpm
               smallest = distance;
               n_min    = -spline.outward_normal(u);
               phi_min  = (x - spline.value(u)) * n_min;
+              foot     = spline.value(u);
               nearest  = condition;
             }
         }
@@ -441,6 +501,15 @@ namespace bsmpm
       return 1.;
 
     const double D = d_function(phi_min, delta);
+    if (formulation == Formulation::consistent)
+      {
+        const Tensor<1, 2> w_b = field(foot);
+        if (nearest->kind == CurveCondition::Kind::roller)
+          w -= (1 - D) * (w_b * n_min) * n_min;
+        else
+          w -= (1 - D) * w_b;
+        return D;
+      }
     if (nearest->kind == CurveCondition::Kind::roller)
       w -= (1 - D) * (w * n_min) * n_min;
     else

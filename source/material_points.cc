@@ -191,7 +191,13 @@ namespace bsmpm
             auto           du = kernel.displacement(d, st);
             double         D  = 1;
             if (near_support)
-              D = support(particle.get_location(), du);
+              D = support(
+                particle.get_location(),
+                [&](const Point<2> &y) {
+                  return kernel.displacement(
+                    d, grid.local_coordinates(y, grid.cell_index(cell)));
+                },
+                du);
             if (prescribed)
               du += kernel.displacement(da, st);
 

@@ -232,6 +232,16 @@ namespace bsmpm
 
 
   std::vector<double>
+  Scene::support_qualities() const
+  {
+    return GhostPenalty::cell_qualities(grid,
+                                        cell_moments,
+                                        assembly->constraints());
+  }
+
+
+
+  std::vector<double>
   Scene::fill_fractions() const
   {
     std::vector<double> fraction(grid.triangulation().n_active_cells(), 0.);
@@ -286,16 +296,18 @@ namespace bsmpm
           false,
           band_cells);
       }
-    const auto report =
-      points.move(assembly->kernel(),
-                  material,
-                  increment,
-                  has_prescribed ? &prescribed : nullptr,
-                  ibm ? &band_cells : nullptr,
-                  [this](const Point<2> &x, Tensor<1, 2> &w) {
-                    return implicit_boundary.support_displacement(
-                      boundary_curves, grid, x, w);
-                  });
+    const auto report = points.move(
+      assembly->kernel(),
+      material,
+      increment,
+      has_prescribed ? &prescribed : nullptr,
+      ibm ? &band_cells : nullptr,
+      [this](const Point<2>                                      &x,
+             const std::function<Tensor<1, 2>(const Point<2> &)> &field,
+             Tensor<1, 2>                                        &w) {
+        return implicit_boundary.support_displacement(
+          boundary_curves, grid, x, field, w);
+      });
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
@@ -355,6 +367,13 @@ namespace bsmpm
       if (cell->is_locally_owned())
         subdomain[cell->active_cell_index()] = cell->subdomain_id();
     grid_out.add_data_vector(fill, "material_fraction");
+    const std::vector<double> qualities =
+      cell_moments.empty() ? std::vector<double>(fraction.size()) :
+                             support_qualities();
+    Vector<float> quality(qualities.begin(), qualities.end());
+    for (auto &q : quality)
+      q = std::max(q, 0.f);
+    grid_out.add_data_vector(quality, "support_quality");
     grid_out.add_data_vector(subdomain, "subdomain");
     grid_out.build_patches();
     output.write_series("grid", step, load_factor, grid_out);
@@ -459,7 +478,7 @@ namespace bsmpm
         assembly->assemble(load_factor,
                            1. / n_load_steps,
                            cell_moments,
-                           fill_fractions(),
+                           support_qualities(),
                            has_prescribed ? &prescribed : nullptr);
         if (linear_solver.estimates_condition() &&
             assembly->rhs().l2_norm() > 0)

@@ -108,7 +108,7 @@ namespace bsmpm
     const double                                      load_factor,
     const double                                      increment_factor,
     const std::vector<CellMoments>                   &moments,
-    const std::vector<double>                        &fraction,
+    const std::vector<double>                        &quality,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
     const BackgroundGrid &grid        = parts.grid;
@@ -169,7 +169,7 @@ namespace bsmpm
         parts.ghost_penalty.assemble(grid,
                                      kernel,
                                      parts.material.youngs_modulus(),
-                                     fraction,
+                                     quality,
                                      prescribed,
                                      constraints,
                                      system_matrix,

@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,18 @@ namespace bsmpm
     BoundaryPoints
     boundary_points(const std::string &edge, const unsigned int n_points) const;
 
+    /** Names of the parts of the boundary that boundary_points() knows, in
+     * counter-clockwise order round the body (a name twice where a hole
+     * splits an edge). */
+    std::vector<std::string>
+    boundary_part_names() const
+    {
+      std::vector<std::string>                           names;
+      std::vector<std::function<Point<2>(const double)>> parts;
+      boundary_parts(names, parts);
+      return names;
+    }
+
     /** Data of an annulus sector (angles in radians). */
     struct Sector
     {
@@ -89,6 +102,13 @@ namespace bsmpm
     }
 
   private:
+    /** The parts of the boundary, each a map from [0, 1] along it, with
+     * their names, in counter-clockwise order round the body. */
+    void
+    boundary_parts(
+      std::vector<std::string>                           &names,
+      std::vector<std::function<Point<2>(const double)>> &parts) const;
+
     Shape    region_shape = Shape::rectangle;
     Point<2> lower_left, upper_right; // rectangle (and rectangle minus disc)
     Point<2> center;                  // rotated rectangle

@@ -244,6 +244,16 @@ namespace bsmpm
     n_points() const;
 
   private:
+    /**
+     * If every curve lies on a named part of the body region's boundary
+     * (Points = region edge) and together they leave parts uncovered, adds
+     * a free curve of tracking points along each of those, so that the
+     * curves enclose the body (encloses_body()).
+     */
+    void
+    complete_region_boundary(const BodyRegion     &region,
+                             const BackgroundGrid &grid);
+
     /** How the points of a curve are given. */
     struct Source
     {

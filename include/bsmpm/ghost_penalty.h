@@ -18,20 +18,38 @@ namespace bsmpm
   using namespace dealii;
 
   /**
-   * Ghost-penalty stabilisation of partly filled cells (beyond the paper;
-   * method-notes Sec. 7, as in CutFEM). A cell whose material points fill
-   * less than a fraction of it integrates its stiffness over a sliver, so
-   * the DoFs at its far side are held by almost nothing and the system's
-   * condition number grows like one over the fill fraction. On every face
-   * between two cells with material, at least one of them partly filled,
-   * this adds
+   * Ghost-penalty stabilisation of weakly held DoFs (beyond the paper;
+   * method-notes Sec. 7, as in CutFEM), on by default.
    *
-   *   gamma E h int_F [d u / d n] . [d v / d n] ds,
+   * A DoF whose cells hold only a sliver of material, or a few points far
+   * from it, is held by almost nothing, and the condition number grows
+   * without bound (like one over the fill fraction of a sliver). How well
+   * the material holds the DoFs of a vertex v is measured by its support
+   * quality
+   *
+   *   q_v = int |grad N_v|^2 dA over the material of the cells round v,
+   *         divided by the same over four full cells,
+   *
+   * which the cell moments give exactly (N_v is bilinear, so |grad N_v|^2
+   * needs the moments up to second order). It is the diagonal stiffness of
+   * v's DoFs in units of a full patch's: a sliver of fraction f next to v
+   * gives q_v of about f / 4, a lone point far from v almost nothing, full
+   * cells 1. A vertex whose DoFs are both constrained needs no support. A
+   * cell's quality is the least of its free vertices'.
+   *
+   * On every face between two cells with material, one of them below the
+   * quality threshold q0, this adds
+   *
+   *   gamma (1 - min(q, q0) / q0) E h int_F [d u / d n] . [d v / d n] ds,
    *
    * the jump of the normal derivative across the face, which extends the
-   * stiffness of the full neighbour into the sliver. The jump vanishes for
+   * stiffness of the neighbour into the weak cell. The penalty is only as
+   * strong as the missing support: it fades out as q reaches q0, and q0 is
+   * the quality below which the condition number would exceed ten times a
+   * full grid's (measured: about 15 / f for a row of slivers of fraction
+   * f). That keeps its bias small (doc/stability.md). The jump vanishes for
    * linear displacement fields, so patch tests stay exact; for smooth ones
-   * it is O(h), like the discretisation error.
+   * the bias falls faster than the discretisation error.
    */
   class GhostPenalty
   {
@@ -48,9 +66,9 @@ namespace bsmpm
     }
 
     /**
-     * Adds the face terms. @p fraction holds the material fraction
-     * (volume / cell area) of every locally owned cell, by
-     * active_cell_index(). The matrix needs the couplings across faces
+     * Adds the face terms. @p quality holds the support quality of every
+     * locally owned cell, by active_cell_index() (negative: no material). The
+     * matrix needs the couplings across faces
      * (DoFTools::make_flux_sparsity_pattern). With @p prescribed (the nodal
      * values d^a of an IBM prescribed displacement), the penalty acts on the
      * total field w + M d^a, which adds -J d^a to @p rhs: d^a is fitted to
@@ -61,11 +79,23 @@ namespace bsmpm
     assemble(const BackgroundGrid                             &grid,
              const Q1CellKernel                               &kernel,
              const double                                      youngs_modulus,
-             const std::vector<double>                        &fraction,
+             const std::vector<double>                        &quality,
              const LinearAlgebra::distributed::Vector<double> *prescribed,
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs) const;
+
+    /**
+     * The support quality of every locally owned cell (by
+     * active_cell_index()), from its material moments @p moments: the least
+     * quality of its vertices that @p constraints leave free, 1 if there is
+     * none, and -1 for a cell without material (see the class
+     * documentation).
+     */
+    static std::vector<double>
+    cell_qualities(const BackgroundGrid            &grid,
+                   const std::vector<CellMoments>  &moments,
+                   const AffineConstraints<double> &constraints);
 
     /** Number of faces stabilised by the last assemble() on this process. */
     unsigned int
@@ -75,9 +105,9 @@ namespace bsmpm
     }
 
   private:
-    bool                 use       = false;
-    double               penalty   = 0.01;
-    double               threshold = 0.99;
+    bool                 use       = true;
+    double               penalty   = 0.02;
+    double               threshold = 0.005;
     mutable unsigned int faces     = 0;
   };
 } // namespace bsmpm

@@ -14,6 +14,7 @@
 #include <bsmpm/q1_cell_kernel.h>
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace bsmpm
@@ -112,14 +113,18 @@ namespace bsmpm
 
     /**
      * The displacement increment of a point at @p x (before it moves) whose
-     * grid increment is @p w: P(D) w if @p x lies in the band of an IBM
-     * support, else w. Returns D (1 outside every band).
+     * grid increment is @p w, if @p x lies in the band of an IBM support:
+     * w - (1 - D) P w(x_b) (consistent formulation, with @p field the grid
+     * increment anywhere in the point's cell and x_b the nearest boundary
+     * point) or P(D) w; else w. Returns D (1 outside every band).
      */
     double
-    support_displacement(const BoundaryCurves &curves,
-                         const BackgroundGrid &grid,
-                         const Point<2>       &x,
-                         Tensor<1, 2>         &w) const;
+    support_displacement(
+      const BoundaryCurves                                &curves,
+      const BackgroundGrid                                &grid,
+      const Point<2>                                      &x,
+      const std::function<Tensor<1, 2>(const Point<2> &)> &field,
+      Tensor<1, 2>                                        &w) const;
 
     const std::vector<BandPoint> &
     band_points() const
@@ -137,7 +142,14 @@ namespace bsmpm
     double       relative_band_width = 1e-6;
     unsigned int points_along        = 2;
     unsigned int points_across       = 3;
-    bool         paper_roller_form   = false;
+    /** How the band modifies the displacement (see "Formulation"). */
+    enum class Formulation
+    {
+      consistent,
+      frame,
+      paper
+    };
+    Formulation formulation = Formulation::consistent;
 
     std::vector<BandPoint> points;
   };

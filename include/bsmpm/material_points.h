@@ -107,10 +107,13 @@ namespace bsmpm
 
     /**
      * Modifies the displacement increment @p w of a point at @p x near a
-     * support and returns the D-function there (see ImplicitBoundary).
+     * support and returns the D-function there (see ImplicitBoundary);
+     * @p field gives the grid increment anywhere in the point's cell.
      */
-    using SupportFunction =
-      std::function<double(const Point<2> &x, Tensor<1, 2> &w)>;
+    using SupportFunction = std::function<
+      double(const Point<2>                                      &x,
+             const std::function<Tensor<1, 2>(const Point<2> &)> &field,
+             Tensor<1, 2>                                        &w)>;
 
     /**
      * Applies the grid increment @p increment (with ghost values) to every

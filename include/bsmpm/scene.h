@@ -85,6 +85,9 @@ namespace bsmpm
     /** Fill fraction of every locally owned cell. */
     std::vector<double>
     fill_fractions() const;
+    /** Support quality (GhostPenalty) of every locally owned cell. */
+    std::vector<double>
+    support_qualities() const;
     LinearSolver::Report
     solve();
     void

@@ -78,7 +78,7 @@ namespace bsmpm
     /**
      * Assembles K and r for load factor @p load_factor, the load increment
      * of the step being @p increment_factor (prescribed displacements are
-     * applied incrementally). @p fraction: fill fraction of every locally
+     * applied incrementally). @p quality: support quality of every locally
      * owned cell (for the ghost penalty). @p prescribed: the nodal values
      * d^a of an IBM prescribed displacement increment, or nullptr.
      */
@@ -86,7 +86,7 @@ namespace bsmpm
     assemble(const double                                      load_factor,
              const double                                      increment_factor,
              const std::vector<CellMoments>                   &moments,
-             const std::vector<double>                        &fraction,
+             const std::vector<double>                        &quality,
              const LinearAlgebra::distributed::Vector<double> *prescribed);
 
     const AffineConstraints<double> &
