@@ -545,9 +545,8 @@ namespace
                                target);
       deallog << "points on one side of the centroid: " << fit.n_moments
               << " moment" << std::endl;
-      // Points on a line through the centroid: the Gram matrix of 1, s, t
-      // is singular, so only the area is fitted (the cell's mean stress
-      // completes the first moments, see CutCellQuadrature).
+      // Points on a line through the centroid carry the area and the
+      // centroid, but no second moment.
       fit = MomentFitting::fit({Point<2>(0.2, 0.1),
                                 Point<2>(0.4, 0.3),
                                 Point<2>(0.6, 0.5)},
