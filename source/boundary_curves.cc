@@ -215,6 +215,17 @@ namespace bsmpm
 
 
 
+  Voigt
+  BoundaryCurve::stress_at(const unsigned int segment, const double u) const
+  {
+    const auto         range = spline->segment_parameters(segment);
+    const unsigned int k1    = (segment + 1) % positions.size();
+    const double       f     = (u - range[0]) / (range[1] - range[0]);
+    return (1 - f) * stresses[segment] + f * stresses[k1];
+  }
+
+
+
   const CurveCondition *
   BoundaryCurve::condition_of_segment(const unsigned int k) const
   {

@@ -82,6 +82,7 @@ namespace bsmpm
     unsigned int n_cut      = 0;
     unsigned int n_fitted[] = {0, 0, 0, 0, 0, 0, 0};
     unsigned int n_outside  = 0;
+    unsigned int n_full_fit = 0;
 
     std::vector<Point<2>>                     st;
     std::vector<double>                       volume;
@@ -101,22 +102,39 @@ namespace bsmpm
             n_outside += (m.v > 0);
             continue;
           }
-        if (fill == CutCellGeometry::Fill::full)
-          continue;
-        ++n_cut;
+        const bool full = fill == CutCellGeometry::Fill::full;
+        n_cut += !full;
 
         // The exact volume moments of K ∩ Ω.
         const auto           &mu = cut_geometry.moments(ij);
         std::array<double, 6> target;
         for (unsigned int k = 0; k < 6; ++k)
           target[k] = mu[k] * cell_area;
-        m     = CellMoments();
-        m.v   = target[0];
-        m.vs  = target[1];
-        m.vt  = target[2];
-        m.vss = target[3];
-        m.vst = target[4];
-        m.vtt = target[5];
+
+        // A full cell whose points have the cell's area and centroid
+        // integrates a linear stress field's force exactly already (the
+        // points of a regular layout that have not moved).
+        const double tolerance  = 1e-12 * cell_area;
+        const bool   consistent = full && m.v > 0 &&
+                                std::abs(m.v - target[0]) <= tolerance &&
+                                std::abs(m.vs - target[1]) <= tolerance &&
+                                std::abs(m.vt - target[2]) <= tolerance;
+        const CellMoments plain = m;
+        m                       = CellMoments();
+        m.v                     = target[0];
+        m.vs                    = target[1];
+        m.vt                    = target[2];
+        m.vss                   = target[3];
+        m.vst                   = target[4];
+        m.vtt                   = target[5];
+        if (consistent)
+          {
+            m.stress   = plain.stress;
+            m.stress_s = plain.stress_s;
+            m.stress_t = plain.stress_t;
+            continue;
+          }
+        n_full_fit += full;
 
         st.clear();
         volume.clear();
@@ -139,8 +157,12 @@ namespace bsmpm
             continue;
           }
 
-        const auto fit = MomentFitting::fit(st, volume, target);
-        ++n_fitted[fit.n_moments];
+        // Cut cells: all six moments where the points can carry them; full
+        // cells: the area and centroid, which a linear stress field's force
+        // needs.
+        const auto fit = MomentFitting::fit(st, volume, target, full ? 3 : 6);
+        if (!full)
+          ++n_fitted[fit.n_moments];
         double sum_w = 0, sum_ws = 0, sum_wt = 0;
         for (unsigned int p = 0; p < st.size(); ++p)
           {
@@ -164,7 +186,7 @@ namespace bsmpm
           }
       }
 
-    // Cut cells without points: the stress of the neighbourhood, from a
+    // Cells of the body without points: the stress of the neighbourhood, from a
     // lumped projection of the points' stresses onto the grid's vertices.
     const MPI_Comm     comm = grid.mpi_communicator();
     const unsigned int n_without_all =
@@ -254,5 +276,6 @@ namespace bsmpm
     counts["cut_cells_fit1"]      = Utilities::MPI::sum(n_fitted[1], comm);
     counts["cut_cells_pointless"] = n_without_all;
     counts["outside_body_cells"]  = Utilities::MPI::sum(n_outside, comm);
+    counts["full_cells_fitted"]   = Utilities::MPI::sum(n_full_fit, comm);
   }
 } // namespace bsmpm

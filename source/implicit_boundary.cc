@@ -117,12 +117,16 @@ namespace bsmpm
     const Q1CellKernel                               &kernel,
     const Tensor<2, 3>                               &C,
     const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const ExactSolution                              *exact,
+    const double                                      increment_factor,
     const AffineConstraints<double>                  &constraints,
     TrilinosWrappers::SparseMatrix                   &matrix,
     TrilinosWrappers::MPI::Vector                    &rhs)
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     points.clear();
+    last_increment_factor = increment_factor;
+    last_exact            = exact;
     const double    delta = band_width(grid);
     const QGauss<1> along(points_along), across(points_across);
 
@@ -149,6 +153,9 @@ namespace bsmpm
               da[i] = (*prescribed)(dof_indices[i]);
 
           const bool roller = condition->kind == CurveCondition::Kind::roller;
+          const bool imposes =
+            formulation == Formulation::consistent &&
+            condition->kind == CurveCondition::Kind::displacement;
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
           cell_matrix                = 0;
@@ -170,6 +177,24 @@ namespace bsmpm
                 {
                   trace[i]    = kernel.shape_value(i, st_c);
                   trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent;
+                }
+              // The boundary's stress from the previous steps: the band's
+              // share of the internal force, int B2^T sigma, which carries
+              // the support's reaction from step to step.
+              const Voigt sigma_previous = curve.stress_at(piece.segment, u);
+              // The prescribed increment g on the boundary and its
+              // derivative along it (central differences along the curve).
+              Tensor<1, 2> g, dg_dt;
+              if (imposes)
+                {
+                  const double   tau = 1e-6 * du;
+                  const Point<2> a   = spline.value(u - tau),
+                                 b   = spline.value(u + tau);
+                  g = increment_factor * prescribed_value(*condition, exact, c);
+                  dg_dt = increment_factor *
+                          (prescribed_value(*condition, exact, b) -
+                           prescribed_value(*condition, exact, a)) /
+                          ((b - a) * tangent);
                 }
 
               for (unsigned int r = 0; r < across.size(); ++r)
@@ -212,12 +237,20 @@ namespace bsmpm
                           cell_matrix(i, j) +=
                             w *
                             (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
-                      // Band part of f^d: int Delta^T C B d^a.
-                      if (prescribed)
+                      // Band part of f^d, int Delta^T C B d^a, and of the
+                      // internal force.
+                      const Voigt sigma = sigma_previous + C * strain_a;
+                      for (unsigned int i = 0; i < n; ++i)
+                        cell_rhs[i] -= w * B2[i] * sigma;
+                      // u = w - (1 - D)(w(c) - g): the band strain of g,
+                      // Delta_g, enters the energy like a prescribed strain.
+                      if (imposes)
                         {
-                          const Voigt sigma_a = C * strain_a;
+                          const Voigt sigma_g =
+                            C * voigt(dD * outer_product(g, normal) -
+                                      (1 - D) * outer_product(dg_dt, tangent));
                           for (unsigned int i = 0; i < n; ++i)
-                            cell_rhs[i] -= w * B2[i] * sigma_a;
+                            cell_rhs[i] += w * (B1[i] + B2[i]) * sigma_g;
                         }
                       continue;
                     }
@@ -253,13 +286,12 @@ namespace bsmpm
                     for (unsigned int j = 0; j < n; ++j)
                       cell_matrix(i, j) +=
                         w * (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
-                  // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33).
-                  if (prescribed)
-                    {
-                      const Voigt sigma_a = C * strain_a;
-                      for (unsigned int i = 0; i < n; ++i)
-                        cell_rhs[i] -= w * (B1[i] + B2[i]) * sigma_a;
-                    }
+                  // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33),
+                  // and of the internal force.
+                  const Voigt sigma_a = C * strain_a;
+                  for (unsigned int i = 0; i < n; ++i)
+                    cell_rhs[i] -=
+                      w * ((B1[i] + B2[i]) * sigma_a + B2[i] * sigma_previous);
                 }
             }
           constraints.distribute_local_to_global(
@@ -385,13 +417,44 @@ namespace bsmpm
         mass.add(i, i, 1.);
     mass.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
+    // A boundary along the middle of a row of cells sees only one
+    // combination of the values above and below it: the least-squares
+    // system M d = b is singular there (and nearly so where the boundary is
+    // nearly parallel to the grid). Any of its solutions gives the same
+    // displacement (the grid field w absorbs what d^a adds inside the body).
+    // Iterated Tikhonov finds one: factorise A = M + a diag(M) once, then
+    // d += A^-1 (b - M d); each pass shrinks the shift a brings by a / (a +
+    // lambda) in every direction with eigenvalue lambda of M, and leaves
+    // the least weighted norm in the null space.
+    TrilinosWrappers::MPI::Vector shift(grid.locally_owned_dofs(), comm);
+    for (const auto i : grid.locally_owned_dofs())
+      if (touched(i) != 0.)
+        shift(i) = 1e-8 * mass.diag_element(i);
+    for (const auto i : grid.locally_owned_dofs())
+      if (shift(i) != 0.)
+        mass.add(i, i, shift(i));
+    mass.compress(VectorOperation::add);
+    shift.compress(VectorOperation::insert);
 
     TrilinosWrappers::MPI::Vector  solution(grid.locally_owned_dofs(), comm);
+    TrilinosWrappers::MPI::Vector  correction(solution), residual(solution);
     SolverControl                  control(1, 0);
     TrilinosWrappers::SolverDirect solver(
       control,
       TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
-    solver.solve(mass, solution, rhs);
+    solver.initialize(mass);
+    solver.solve(solution, rhs);
+    for (unsigned int pass = 0; pass < 4; ++pass)
+      {
+        // b - M d = b - A d + a diag(M) d
+        mass.vmult(residual, solution);
+        residual.sadd(-1., 1., rhs);
+        correction = solution;
+        correction.scale(shift);
+        residual += correction;
+        solver.solve(correction, residual);
+        solution += correction;
+      }
     constraints.distribute(solution);
 
     prescribed.reinit(grid.locally_owned_dofs(),
@@ -503,7 +566,10 @@ namespace bsmpm
     const double D = d_function(phi_min, delta);
     if (formulation == Formulation::consistent)
       {
-        const Tensor<1, 2> w_b = field(foot);
+        Tensor<1, 2> w_b = field(foot);
+        if (nearest->kind == CurveCondition::Kind::displacement)
+          w_b -= last_increment_factor *
+                 prescribed_value(*nearest, last_exact, foot);
         if (nearest->kind == CurveCondition::Kind::roller)
           w -= (1 - D) * (w_b * n_min) * n_min;
         else

@@ -89,9 +89,6 @@ namespace bsmpm
           const bool roller = condition->kind == CurveCondition::Kind::roller;
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
-          const auto          range  = spline.segment_parameters(piece.segment);
-          const unsigned int  k0     = piece.segment;
-          const unsigned int  k1     = (k0 + 1) % curve.positions.size();
           cell_matrix                = 0;
           cell_rhs                   = 0;
 
@@ -120,12 +117,9 @@ namespace bsmpm
                           project(stress_n[i]) * value[j] +
                           beta * project(value[i]) * value[j]);
 
-              // Reaction of the previous steps: the stress of the curve's
-              // points, interpolated along the segment.
-              const double f = (u - range[0]) / (range[1] - range[0]);
-              const Voigt  sigma =
-                (1 - f) * curve.stresses[k0] + f * curve.stresses[k1];
-              const Tensor<1, 2> reaction = project(traction(sigma, nv));
+              // Reaction of the previous steps.
+              const Tensor<1, 2> reaction =
+                project(traction(curve.stress_at(piece.segment, u), nv));
 
               Tensor<1, 2> g;
               if (condition->kind == CurveCondition::Kind::displacement)

@@ -472,7 +472,7 @@ namespace bsmpm
         compute_cell_moments();
         assembly->make_constraints(cell_moments);
         has_prescribed =
-          ImplicitBoundary::prescribes_displacement(boundary_curves);
+          implicit_boundary.fits_prescribed_displacement(boundary_curves);
         if (has_prescribed)
           fit_prescribed_displacement(1. / n_load_steps);
         assembly->assemble(load_factor,

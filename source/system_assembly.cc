@@ -41,7 +41,7 @@ namespace bsmpm
                          dsp,
                          comm);
     system_rhs.reinit(grid.locally_owned_dofs(), comm);
-    if (ImplicitBoundary::prescribes_displacement(parts.curves))
+    if (parts.implicit_boundary.fits_prescribed_displacement(parts.curves))
       boundary_fit_matrix.reinit(grid.locally_owned_dofs(),
                                  grid.locally_owned_dofs(),
                                  dsp,
@@ -184,6 +184,8 @@ namespace bsmpm
                                          kernel,
                                          parts.material.stiffness(),
                                          prescribed,
+                                         parts.exact_solution,
+                                         increment_factor,
                                          constraints,
                                          system_matrix,
                                          system_rhs);

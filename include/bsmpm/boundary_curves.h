@@ -133,6 +133,13 @@ namespace bsmpm
       return closed ? positions.size() : positions.size() - 1;
     }
 
+    /** The stress of the curve's points as of the last load step at
+     * parameter @p u of segment @p segment, interpolated linearly between
+     * the segment's two points: the boundary's stress, whose traction is the
+     * reaction that supports carry from step to step. */
+    Voigt
+    stress_at(const unsigned int segment, const double u) const;
+
     /** The condition on segment @p k (the last one given that covers it),
      * or nullptr if the segment is free. */
     const CurveCondition *

@@ -76,9 +76,12 @@ namespace bsmpm
     }
 
     /**
-     * Adds the band terms k2 + k2^T + k3 of all IBM supports on locally owned
-     * cells to @p matrix, and, if @p prescribed is given (d^a with ghosts),
-     * the band part of -f^d to @p rhs.
+     * Adds the band terms of all IBM supports on locally owned cells to
+     * @p matrix, and to @p rhs the band's share of the internal force of the
+     * previous steps and of the force of a prescribed displacement: through
+     * @p prescribed (d^a with ghosts, frame and paper formulations) or, in
+     * the consistent formulation, from the prescribed values themselves
+     * times @p increment_factor (@p exact for "displacement exact").
      */
     void
     assemble(const BoundaryCurves                             &curves,
@@ -86,6 +89,8 @@ namespace bsmpm
              const Q1CellKernel                               &kernel,
              const Tensor<2, 3>                               &C,
              const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const ExactSolution                              *exact,
+             const double                                      increment_factor,
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs);
@@ -93,6 +98,20 @@ namespace bsmpm
     /** Whether any IBM support prescribes a displacement. */
     static bool
     prescribes_displacement(const BoundaryCurves &curves);
+
+    /**
+     * Whether prescribed displacements go through nodal values d^a fitted
+     * by least squares (fit_prescribed_displacement(), the paper's eq. 36:
+     * frame and paper formulations). The consistent formulation imposes
+     * the prescribed value g on the boundary itself, u = w + (1 - D)(g -
+     * w(x_b)), and needs no fit.
+     */
+    bool
+    fits_prescribed_displacement(const BoundaryCurves &curves) const
+    {
+      return formulation != Formulation::consistent &&
+             prescribes_displacement(curves);
+    }
 
     /**
      * The least-squares nodal values d^a of eq. 36 for the prescribed
@@ -152,6 +171,10 @@ namespace bsmpm
     Formulation formulation = Formulation::consistent;
 
     std::vector<BandPoint> points;
+    /** The increment factor and exact solution of the last assemble(), for
+     * support_displacement(). */
+    double               last_increment_factor = 0;
+    const ExactSolution *last_exact            = nullptr;
   };
 } // namespace bsmpm
 

@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+"""Constant-stress patch tests on a rotated square, whatever the point layout.
+
+A 100 mm square rotated by 0, 15, 30, 45 and 60 degrees on a grid of 10 mm
+cells, its boundary four B-splines through tracking points, in two load
+steps (the second one integrates the stresses of the first), for every
+layout a user would pick (per cell 1..8, a lattice, cell centroids):
+
+  (a) pressure 8 kPa on one side, rollers on the other three (the lower left
+      corner of the square stays put);
+  (b) a linear displacement field imposed on the whole boundary.
+
+The supports by the implicit boundary method (delta/h = 1e-6) or by
+Nitsche's method. The exact stress is constant, so the discrete one must be
+too, up to round-off times the condition number: every relative stress error
+R_sigma_* <= 1e-8 (implicit boundary) or <= 1e-10 (Nitsche). The cut cells
+make this hold: their stiffness takes the exact moments of the part of the
+cell inside the square, their stresses are integrated by fitted weights.
+
+Usage: patch_tests.py --bsmpm BSMPM --method ibm|nitsche [--angles ...]
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+E, NU, P = 1e6, 0.25, 8000.0
+
+
+def scene(angle, layout, case, method, directory):
+    """The parameter file of one patch test."""
+    a = math.radians(angle)
+    cx = cy = 0.075
+
+    def corner(x, y):
+        return (cx + math.cos(a) * x - math.sin(a) * y,
+                cy + math.sin(a) * x + math.cos(a) * y)
+
+    lower_left = corner(-0.05, -0.05)
+    if case == "pressure":
+        # Rollers on three sides: strain only along the square's own y.
+        stress = (-NU / (1 - NU) * P, -P, 0.0)
+        conditions = {"top": "pressure 8000", "bottom": "roller",
+                      "right": "roller", "left": "roller"}
+    else:
+        stress = (-3000.0, 5000.0, 2000.0)
+        conditions = {side: "displacement exact"
+                      for side in ("top", "bottom", "right", "left")}
+    dirichlet = "nitsche" if method == "nitsche" else "implicit boundary"
+
+    lines = [
+        "set Scene name = patch",
+        "subsection Background grid",
+        "  set Lower left corner  = 0, 0",
+        "  set Upper right corner = 0.15, 0.15",
+        "  set Cells per direction = 15, 15",
+        "end",
+        "subsection Material",
+        f"  set Young's modulus = {E}",
+        f"  set Poisson's ratio = {NU}",
+        "  set Model = plane strain",
+        "end",
+        "subsection Loading",
+        "  set Load steps = 2",
+        "end",
+        "subsection Body region",
+        "  set Shape = rotated rectangle",
+        f"  set Center = {cx}, {cy}",
+        "  set Width = 0.1",
+        "  set Height = 0.1",
+        f"  set Angle = {angle}",
+        "end",
+        "subsection Material points",
+    ]
+    kind, n = layout.split()[0], layout.split()[-1]
+    if kind == "per":
+        lines += ["  set Layout = per cell", f"  set Points per cell = {n}"]
+    elif kind == "lattice":
+        lines += ["  set Layout = lattice", "  set Lattice points = 37, 37"]
+    else:
+        lines += ["  set Layout = cell centroid"]
+    lines += ["end", "subsection Boundary curves"]
+    for k, side in enumerate(("bottom", "right", "top", "left")):
+        lines += [f"  subsection Curve {k + 1}",
+                  "    set Points = region edge",
+                  f"    set Edge = {side}",
+                  "    set Number of points = 11",
+                  f"    set Condition = {conditions[side]}",
+                  f"    set Dirichlet method = {dirichlet}",
+                  "  end"]
+    lines += [
+        "end",
+        "subsection Implicit boundary",
+        "  set Relative band width = 1e-6",
+        "end",
+        "subsection Exact solution",
+        "  set Name = constant stress",
+        "  subsection Constant stress",
+        f"    set Stress = {stress[0]!r}, {stress[1]!r}, {stress[2]!r}",
+        f"    set Angle = {angle}",
+        f"    set Fixed point = {lower_left[0]!r}, {lower_left[1]!r}",
+        "  end",
+        "end",
+        "subsection Output",
+        f"  set Directory = {directory}",
+        "  set Interval = 0",
+        "  set Timing summary = false",
+        "end",
+    ]
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--bsmpm", required=True)
+    parser.add_argument("--method", choices=["ibm", "nitsche"], required=True)
+    parser.add_argument("--angles", default="0,15,30,45,60")
+    args = parser.parse_args()
+
+    bound = 1e-8 if args.method == "ibm" else 1e-10
+    layouts = [f"per cell {n}" for n in range(1, 9)] + ["lattice",
+                                                       "cell centroid"]
+    failures, worst = [], 0.0
+    with tempfile.TemporaryDirectory() as tmp:
+        prm = os.path.join(tmp, "patch.prm")
+        out = os.path.join(tmp, "output")
+        for angle in [float(a) for a in args.angles.split(",")]:
+            for case in ("pressure", "displacement"):
+                row = []
+                for layout in layouts:
+                    with open(prm, "w") as f:
+                        f.write(scene(angle, layout, case, args.method, out))
+                    run = subprocess.run([args.bsmpm, prm],
+                                         capture_output=True, text=True)
+                    if run.returncode != 0:
+                        failures.append(f"{angle} {case} {layout}: exit "
+                                        f"{run.returncode}: "
+                                        f"{run.stderr.strip()[-300:]}")
+                        row.append("  fail ")
+                        continue
+                    with open(os.path.join(out, "summary.json")) as f:
+                        errors = json.load(f)["errors"]
+                    error = max(errors[k] for k in errors
+                                if k.startswith("R_sigma"))
+                    worst = max(worst, error)
+                    row.append(f"{error:7.1e}")
+                    if not error <= bound:
+                        failures.append(f"{angle} {case} {layout}: "
+                                        f"R_sigma {error:.2e} > {bound:.0e}")
+                print(f"{angle:4.0f} deg {case:12s} " + " ".join(row),
+                      flush=True)
+    print(f"layouts: {', '.join(layouts)}")
+    print(f"worst R_sigma {worst:.2e} (bound {bound:.0e})")
+    for failure in failures:
+        print("FAILED:", failure)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
