@@ -58,7 +58,7 @@ def main():
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for ax, keys in zip(axes, (["R_v", "R_sigma_yy"], ["condition_estimate"])):
-        for name, suffix in (("fill_plain", ", no stabilisation"), ("fill_ghost", ", ghost penalty")):
+        for name, suffix in (("fill_plain", ", no stabilisation"), ("fill_ghost", ", default ghost penalty")):
             rows = read(directory, name)
             fill = lambda r: (float(r["value"].split(",")[1]) - 1) / 0.25
             panel(ax, rows, fill, keys, "fill fraction of the cut cells", suffix)

@@ -158,7 +158,7 @@ namespace bsmpm
                      const ExactSolution  *exact,
                      const Point<2>       &x);
 
-    double       relative_band_width = 1e-6;
+    double       relative_band_width = 1e-2;
     unsigned int points_along        = 2;
     unsigned int points_across       = 3;
     /** How the band modifies the displacement (see "Formulation"). */
