@@ -84,7 +84,7 @@ def main():
     convergence(directory, figures, "square_ibm_delta", ["R_sigma_yy", "A_u", "A_v"],
                 "band width delta / h", "1b: band width, 32^2 points (Fig. 7)",
                 "square_ibm_delta.png")
-    for form in ("frame", "paper"):
+    for form in ("consistent", "frame", "paper"):
         convergence(directory, figures, f"square45_delta_{form}", ["R_v", "R_sigma_yy"],
                     "band width delta / h", f"1c, 45 degrees, {form} form (Fig. 9)",
                     f"square45_delta_{form}.png")
@@ -94,12 +94,17 @@ def main():
     convergence(directory, figures, "plate_neumann_h",
                 ["A_u", "A_v", "R_sigma_xx", "L2_sigma"], "cell size h (m)",
                 "4a: plate with a hole, Kirsch traction (Fig. 17)", "plate_neumann_h.png")
+    convergence(directory, figures, "plate_neumann_h_paper",
+                ["A_u", "A_v", "max_A_u", "L2_sigma"], "cell size h (m)",
+                "4a by the paper's method (plain quadrature)",
+                "plate_neumann_h_paper.png")
     convergence(directory, figures, "plate_dirichlet_h",
-                ["boundary_fit_error", "A_u", "A_v", "R_sigma_xx"], "cell size h (m)",
+                ["A_u", "A_v", "max_A_u", "R_sigma_xx"], "cell size h (m)",
                 "4b: plate, Kirsch displacement by IBM (Figs. 20, 21)",
                 "plate_dirichlet_h.png")
     work_precision(directory, figures,
                    [("plate_neumann_h", "4a, IBM rollers"),
+                    ("plate_neumann_h_paper", "4a, the paper's method"),
                     ("plate_neumann_nitsche_h", "4a, Nitsche rollers"),
                     ("plate_dirichlet_h", "4b, IBM"),
                     ("plate_dirichlet_nitsche_h", "4b, Nitsche"),

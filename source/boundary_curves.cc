@@ -91,7 +91,8 @@ namespace bsmpm
   CurveCondition::parse(const std::string &input, const std::string &where)
   {
     CurveCondition condition;
-    std::string    text = Utilities::trim(input);
+    condition.where  = where;
+    std::string text = Utilities::trim(input);
 
     const auto colon = text.find(':');
     if (colon != std::string::npos)
@@ -174,6 +175,24 @@ namespace bsmpm
                              "<ty>, exact traction, fixed, roller, "
                              "displacement exact, displacement <ux>; <uy>."));
     return condition;
+  }
+
+
+
+  Tensor<1, 2>
+  CurveCondition::function_value(const Point<2> &x, std::string &problem) const
+  {
+    const Tensor<1, 2> value({function->value(x, 0), function->value(x, 1)});
+    if (problem.empty() &&
+        !(std::isfinite(value[0]) && std::isfinite(value[1])))
+      {
+        std::ostringstream message;
+        message << where << ": the " << kind_name() << " is (" << value[0]
+                << ", " << value[1] << ") at (" << x[0] << ", " << x[1]
+                << "), not a finite vector: check the expression.";
+        problem = message.str();
+      }
+    return value;
   }
 
 
@@ -709,6 +728,18 @@ namespace bsmpm
           }
       }
     return true;
+  }
+
+
+
+  std::vector<std::pair<std::string, std::vector<Point<2>>>>
+  BoundaryCurves::given_points() const
+  {
+    std::vector<std::pair<std::string, std::vector<Point<2>>>> result;
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      if (sources[c].kind == "coordinates" || sources[c].kind == "file")
+        result.emplace_back(curves[c].name, sources[c].positions);
+    return result;
   }
 
 

@@ -5,6 +5,7 @@
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <bsmpm/implicit_boundary.h>
+#include <bsmpm/parameter_tools.h>
 
 #include <cmath>
 
@@ -133,6 +134,7 @@ namespace bsmpm
     points.clear();
     last_increment_factor = increment_factor;
     last_exact            = exact;
+    std::string     problem;
     const double    delta = band_width(grid);
     const QGauss<1> along(points_along), across(points_across);
 
@@ -197,6 +199,13 @@ namespace bsmpm
                   const Point<2> a   = spline.value(u - tau),
                                  b   = spline.value(u + tau);
                   g = increment_factor * prescribed_value(*condition, exact, c);
+                  if (problem.empty() &&
+                      !(std::isfinite(g[0]) && std::isfinite(g[1])))
+                    problem = condition->where +
+                              ": the prescribed displacement is not finite "
+                              "at (" +
+                              std::to_string(c[0]) + ", " +
+                              std::to_string(c[1]) + "): check the expression.";
                   dg_dt = increment_factor *
                           (prescribed_value(*condition, exact, b) -
                            prescribed_value(*condition, exact, a)) /
@@ -303,6 +312,7 @@ namespace bsmpm
           constraints.distribute_local_to_global(
             cell_matrix, cell_rhs, dof_indices, matrix, rhs);
         }
+    ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 
 

@@ -4,6 +4,9 @@
 
 #include <bsmpm/scene.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -23,6 +26,15 @@ namespace
     "Options:\n"
     "  --set \"Section/Subsection/Name=value\"\n"
     "                      override one parameter of the file (repeatable)\n"
+    "  --sweep \"Section/Name=v1,v2,...\"\n"
+    "                      run the scene once per value in one process (values\n"
+    "                      separated by ';' if they contain commas); run k\n"
+    "                      writes into <Output/Directory>/sweep-<k>, and\n"
+    "                      <Output/Directory>/sweep.json lists the values\n"
+    "  --resume DIR        continue a run from its latest checkpoint in the\n"
+    "                      output directory DIR (or from the checkpoint DIR),\n"
+    "                      with its parameters; only Output/... may be --set\n"
+    "                      (checkpoints: Output/Checkpoint interval)\n"
     "  --print-parameters  print every parameter with its documentation and\n"
     "                      default value, then exit\n"
     "  --help              print this message and exit\n";
@@ -31,6 +43,8 @@ namespace
   {
     std::string              parameter_file;
     std::vector<std::string> overrides;
+    std::string              sweep;
+    std::string              resume;
     bool                     help             = false;
     bool                     print_parameters = false;
   };
@@ -55,6 +69,21 @@ namespace
           }
         else if (arg.rfind("--set=", 0) == 0)
           line.overrides.push_back(arg.substr(6));
+        else if (arg == "--sweep" || arg.rfind("--sweep=", 0) == 0)
+          {
+            if (arg == "--sweep" && i + 1 >= argc)
+              throw std::runtime_error("--sweep needs an argument "
+                                       "\"Section/Name=v1,v2,...\".");
+            if (!line.sweep.empty())
+              throw std::runtime_error("only one --sweep is allowed.");
+            line.sweep = arg == "--sweep" ? argv[++i] : arg.substr(8);
+          }
+        else if (arg == "--resume")
+          {
+            if (i + 1 >= argc)
+              throw std::runtime_error("--resume needs a directory.");
+            line.resume = argv[++i];
+          }
         else if (!arg.empty() && arg[0] == '-')
           throw std::runtime_error("unknown option '" + arg +
                                    "' (see bsmpm --help).");
@@ -66,6 +95,89 @@ namespace
                                    "').");
       }
     return line;
+  }
+
+  /** Every declared parameter as "Section/Subsection/Name", from the
+   * ParameterHandler's own listing. */
+  std::vector<std::string>
+  declared_paths(const dealii::ParameterHandler &prm)
+  {
+    std::ostringstream listing;
+    prm.print_parameters(listing, dealii::ParameterHandler::PRM);
+    std::istringstream       lines(listing.str());
+    std::vector<std::string> stack, paths;
+    for (std::string line; std::getline(lines, line);)
+      {
+        line = dealii::Utilities::trim(line);
+        if (line.empty() || line[0] == '#')
+          continue;
+        if (line.rfind("subsection ", 0) == 0)
+          stack.push_back(dealii::Utilities::trim(line.substr(11)));
+        else if (line == "end" && !stack.empty())
+          stack.pop_back();
+        else if (line.rfind("set ", 0) == 0)
+          {
+            std::string path;
+            for (const auto &s : stack)
+              path += s + "/";
+            paths.push_back(path + dealii::Utilities::trim(
+                                     line.substr(4, line.find('=') - 4)));
+          }
+      }
+    return paths;
+  }
+
+  /** Edit distance (insertions, deletions, substitutions) ignoring case. */
+  unsigned int
+  edit_distance(const std::string &a, const std::string &b)
+  {
+    std::vector<unsigned int> row(b.size() + 1);
+    for (unsigned int j = 0; j <= b.size(); ++j)
+      row[j] = j;
+    for (unsigned int i = 1; i <= a.size(); ++i)
+      {
+        unsigned int diagonal = row[0];
+        row[0]                = i;
+        for (unsigned int j = 1; j <= b.size(); ++j)
+          {
+            const unsigned int up = row[j];
+            row[j]                = std::min(
+              {row[j] + 1,
+                              row[j - 1] + 1,
+                              diagonal + (std::tolower(a[i - 1]) != std::tolower(b[j - 1]))});
+            diagonal = up;
+          }
+      }
+    return row[b.size()];
+  }
+
+  /** " Did you mean ...?" with the declared paths closest to @p path (all
+   * those within a third of its length, at most three), or nothing. */
+  std::string
+  suggestion(const std::string &path, const std::vector<std::string> &paths)
+  {
+    std::vector<std::pair<unsigned int, std::string>> near;
+    for (const auto &p : paths)
+      near.emplace_back(edit_distance(path, p), p);
+    std::sort(near.begin(), near.end());
+    std::string text;
+    for (unsigned int k = 0; k < near.size() && k < 3; ++k)
+      if (near[k].first <= std::max<std::size_t>(2, path.size() / 3))
+        text += (text.empty() ? "" : ", ") + ("\"" + near[k].second + "\"");
+    return text.empty() ? "" : " Did you mean " + text + "?";
+  }
+
+  /** Throws, naming @p what and the closest declared names, unless
+   * @p path is a declared parameter. */
+  void
+  check_declared(const std::string              &path,
+                 const std::vector<std::string> &paths,
+                 const std::string              &what)
+  {
+    if (std::find(paths.begin(), paths.end(), path) == paths.end())
+      throw std::runtime_error(what + ": there is no parameter \"" + path +
+                               "\"." + suggestion(path, paths) +
+                               " (bsmpm --print-parameters lists them all.)");
   }
 
   /** "A/B/Name=value" as parameter-file text. */
@@ -141,6 +253,52 @@ namespace
         }
     }
 
+    /** Where line @p n (1-based) of the text came from: "line L of 'F'". */
+    std::string
+    where(const unsigned int n) const
+    {
+      if (n == 0 || n > origin.size())
+        return "the parameter file";
+      return "line " + std::to_string(origin[n - 1].second) + " of '" +
+             origin[n - 1].first + "'";
+    }
+
+    /**
+     * The parameter path that line @p n names: "A/B/Name" for a "set Name"
+     * line in subsections A, B; "A/B" for a "subsection B" line in A (then
+     * @p subsection is set). Empty for other lines.
+     */
+    std::string
+    path_at(const unsigned int n, bool &subsection) const
+    {
+      std::istringstream       lines(text);
+      std::vector<std::string> stack;
+      std::string              line;
+      for (unsigned int k = 1; k <= n && std::getline(lines, line); ++k)
+        {
+          line = dealii::Utilities::trim(line.substr(0, line.find('#')));
+          const bool enter = line.rfind("subsection ", 0) == 0;
+          if (k == n)
+            {
+              subsection = enter;
+              std::string path;
+              for (const auto &s : stack)
+                path += s + "/";
+              if (enter)
+                return path + dealii::Utilities::trim(line.substr(11));
+              if (line.rfind("set ", 0) == 0)
+                return path + dealii::Utilities::trim(
+                                line.substr(4, line.find('=') - 4));
+              return "";
+            }
+          if (enter)
+            stack.push_back(dealii::Utilities::trim(line.substr(11)));
+          else if (line == "end" && !stack.empty())
+            stack.pop_back();
+        }
+      return "";
+    }
+
     /** Replaces "Line <n> of file <<input>>" by the true file and line. */
     std::string
     locate(const std::string &message) const
@@ -190,25 +348,66 @@ int
 main(int argc, char **argv)
 {
   using namespace dealii;
+
+  // --help and --print-parameters are answered before MPI starts and before
+  // anything is built. Under mpirun only the first rank prints.
+  CommandLine line;
+  try
+    {
+      line = parse_command_line(argc, argv);
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "bsmpm: error: " << e.what() << std::endl;
+      return 1;
+    }
+  if (line.help || line.print_parameters)
+    {
+      const char *rank = std::getenv("OMPI_COMM_WORLD_RANK");
+      if (rank == nullptr)
+        rank = std::getenv("PMI_RANK");
+      if (rank != nullptr && std::string(rank) != "0")
+        return 0;
+      if (line.help)
+        std::cout << usage;
+      else
+        {
+          ParameterHandler prm;
+          bsmpm::Scene::declare_parameters(prm);
+          prm.print_parameters(std::cout, ParameterHandler::PRM);
+        }
+      return 0;
+    }
+
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
   try
     {
-      const CommandLine line = parse_command_line(argc, argv);
-      ParameterHandler  prm;
+      ParameterHandler prm;
       bsmpm::Scene::declare_parameters(prm);
 
-      if (line.help)
+      if (!line.resume.empty())
         {
+          // A resumed run takes the parameters of its checkpoint.
+          if (!line.parameter_file.empty() || !line.sweep.empty())
+            throw std::runtime_error("--resume takes no parameter file and "
+                                     "no --sweep.");
+          const std::string from = bsmpm::Checkpoint::find(line.resume);
+          bsmpm::Checkpoint::read_parameters(from, prm);
+          for (const auto &assignment : line.overrides)
+            {
+              bsmpm::Checkpoint::check_resume_override(
+                assignment.substr(0, assignment.find('=')));
+              prm.parse_input_from_string(override_as_prm(assignment),
+                                          "--set " + assignment);
+            }
           if (root)
-            std::cout << usage;
-          return 0;
-        }
-      if (line.print_parameters)
-        {
-          if (root)
-            prm.print_parameters(std::cout, ParameterHandler::PRM);
+            std::cout << "resuming from " << from << "\n";
+          bsmpm::Scene scene(MPI_COMM_WORLD);
+          scene.parse_parameters(prm);
+          scene.resume_from(from);
+          scene.run();
           return 0;
         }
       if (line.parameter_file.empty())
@@ -220,6 +419,7 @@ main(int argc, char **argv)
 
       ParameterText text;
       text.expand(std::filesystem::absolute(line.parameter_file));
+      const std::vector<std::string> paths = declared_paths(prm);
       try
         {
           std::istringstream input(text.text);
@@ -227,18 +427,109 @@ main(int argc, char **argv)
         }
       catch (const ExceptionBase &e)
         {
-          throw std::runtime_error(text.locate(message_of(e)));
+          // A misspelt name or subsection: say which and what is near.
+          const std::string message = message_of(e);
+          const auto        at      = message.find("Line <");
+          if (at != std::string::npos)
+            {
+              const unsigned int       n = std::atoi(message.c_str() + at + 6);
+              bool                     sub        = false;
+              const std::string        path       = text.path_at(n, sub);
+              std::vector<std::string> candidates = paths;
+              if (sub)
+                {
+                  // The declared subsections: every prefix of a path.
+                  candidates.clear();
+                  for (const auto &p : paths)
+                    for (auto slash = p.find('/'); slash != std::string::npos;
+                         slash      = p.find('/', slash + 1))
+                      candidates.push_back(p.substr(0, slash));
+                  std::sort(candidates.begin(), candidates.end());
+                  candidates.erase(std::unique(candidates.begin(),
+                                               candidates.end()),
+                                   candidates.end());
+                }
+              if (!path.empty() &&
+                  std::find(candidates.begin(), candidates.end(), path) ==
+                    candidates.end())
+                throw std::runtime_error(
+                  text.where(n) + ": there is no " +
+                  (sub ? "subsection" : "parameter") + " \"" + path + "\"." +
+                  suggestion(path, candidates) +
+                  " (bsmpm --print-parameters lists them all.)");
+            }
+          throw std::runtime_error(text.locate(message));
         }
       for (const auto &assignment : line.overrides)
-        prm.parse_input_from_string(override_as_prm(assignment),
-                                    "--set " + assignment);
+        {
+          const std::string as_prm = override_as_prm(assignment);
+          check_declared(assignment.substr(0, assignment.find('=')),
+                         paths,
+                         "--set \"" + assignment + "\"");
+          prm.parse_input_from_string(as_prm, "--set " + assignment);
+        }
       if (prm.get("Scene name").empty())
         prm.set("Scene name",
                 std::filesystem::path(line.parameter_file).stem().string());
 
-      bsmpm::Scene scene(MPI_COMM_WORLD);
-      scene.parse_parameters(prm);
-      scene.run();
+      if (line.sweep.empty())
+        {
+          bsmpm::Scene scene(MPI_COMM_WORLD);
+          scene.parse_parameters(prm);
+          scene.run();
+          return 0;
+        }
+
+      // A sweep: one run per value, one directory per run, in one process.
+      const auto equal = line.sweep.find('=');
+      if (equal == std::string::npos)
+        throw std::runtime_error("--sweep \"" + line.sweep +
+                                 "\": expected \"Section/Name=v1,v2,...\".");
+      const std::string path = line.sweep.substr(0, equal);
+      check_declared(path, paths, "--sweep \"" + line.sweep + "\"");
+      const std::string        list   = line.sweep.substr(equal + 1);
+      std::vector<std::string> values = Utilities::split_string_list(
+        list, list.find(';') != std::string::npos ? ';' : ',');
+      values.erase(std::remove(values.begin(), values.end(), ""), values.end());
+      if (values.empty())
+        throw std::runtime_error("--sweep \"" + line.sweep + "\": no values.");
+      prm.enter_subsection("Output");
+      const std::string base = prm.get("Directory");
+      prm.leave_subsection();
+
+      std::ostringstream record;
+      record << "{\n  \"parameter\": \"" << path << "\",\n  \"runs\": [";
+      for (unsigned int k = 0; k < values.size(); ++k)
+        {
+          const std::string assignment = path + "=" + values[k];
+          prm.parse_input_from_string(override_as_prm(assignment),
+                                      "--sweep " + assignment);
+          const std::string directory = base + "/sweep-" + std::to_string(k);
+          prm.enter_subsection("Output");
+          prm.set("Directory", directory);
+          prm.leave_subsection();
+          if (root)
+            std::cout << "\nsweep " << k + 1 << " of " << values.size() << ": "
+                      << assignment << "\n";
+          bsmpm::Scene scene(MPI_COMM_WORLD);
+          scene.parse_parameters(prm);
+          scene.run();
+          record << (k == 0 ? "" : ",") << "\n    {\"value\": \"" << values[k]
+                 << "\", \"directory\": \"" << directory
+                 << "\", \"summary\": \"" << directory << "/summary.json\"}";
+        }
+      record << "\n  ]\n}\n";
+      if (root)
+        {
+          const std::string file = base + "/sweep.json";
+          {
+            std::ofstream out(file + ".tmp");
+            out << record.str();
+            if (!out)
+              throw std::runtime_error("cannot write '" + file + "'.");
+          }
+          std::filesystem::rename(file + ".tmp", file);
+        }
     }
   catch (const ExceptionBase &e)
     {

@@ -156,7 +156,8 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     const std::vector<bool>                          *support_cells,
-    const SupportFunction                            &support)
+    const SupportFunction                            &support,
+    const std::vector<double>                        *cell_quality)
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
@@ -227,12 +228,21 @@ namespace bsmpm
                                        props[Property::stress + 2]));
               }
 
+            const bool finite = std::isfinite(du[0]) && std::isfinite(du[1]);
+            report.n_non_finite += !finite;
+            if (finite && props[Property::volume] > 0)
+              report.max_increment = std::max(report.max_increment, du.norm());
             const Point<2> x = particle.get_location() + du;
-            if (!grid.contains(x))
+            if (!finite || !grid.contains(x))
               {
                 ++report.n_left_grid;
                 if (!found_example)
-                  report.example = x;
+                  {
+                    report.example = x;
+                    if (cell_quality)
+                      report.example_quality =
+                        (*cell_quality)[cell->active_cell_index()];
+                  }
                 found_example = true;
               }
             particle.set_location(x);
@@ -248,15 +258,25 @@ namespace bsmpm
       Utilities::MPI::max(report.max_stress, grid.mpi_communicator());
     report.n_left_grid =
       Utilities::MPI::sum(report.n_left_grid, grid.mpi_communicator());
+    report.n_non_finite =
+      Utilities::MPI::sum(report.n_non_finite, grid.mpi_communicator());
+    report.max_increment =
+      Utilities::MPI::max(report.max_increment, grid.mpi_communicator());
     const unsigned int rank =
       Utilities::MPI::this_mpi_process(grid.mpi_communicator());
     const unsigned int reporter =
       Utilities::MPI::min(found_example ? rank : numbers::invalid_unsigned_int,
                           grid.mpi_communicator());
     if (reporter != numbers::invalid_unsigned_int)
-      report.example = Utilities::MPI::broadcast(grid.mpi_communicator(),
-                                                 report.example,
-                                                 reporter);
+      {
+        report.example = Utilities::MPI::broadcast(grid.mpi_communicator(),
+                                                   report.example,
+                                                   reporter);
+        report.example_quality =
+          Utilities::MPI::broadcast(grid.mpi_communicator(),
+                                    report.example_quality,
+                                    reporter);
+      }
     return report;
   }
 

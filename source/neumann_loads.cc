@@ -2,6 +2,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <bsmpm/neumann_loads.h>
+#include <bsmpm/parameter_tools.h>
 
 namespace bsmpm
 {
@@ -39,6 +40,7 @@ namespace bsmpm
                          TrilinosWrappers::MPI::Vector   &rhs)
   {
     points.clear();
+    std::string                          problem;
     const QGauss<1>                      gauss(n_gauss_points);
     Vector<double>                       cell_rhs(Q1CellKernel::dofs_per_cell);
     std::vector<types::global_dof_index> dof_indices(
@@ -78,8 +80,7 @@ namespace bsmpm
                     t = -condition->pressure * n;
                     break;
                   case CurveCondition::Kind::traction:
-                    t[0] = condition->function->value(x, 0);
-                    t[1] = condition->function->value(x, 1);
+                    t = condition->function_value(x, problem);
                     break;
                   case CurveCondition::Kind::exact_traction:
                     t = exact->traction(x, n);
@@ -97,6 +98,7 @@ namespace bsmpm
           cell->get_dof_indices(dof_indices);
           constraints.distribute_local_to_global(cell_rhs, dof_indices, rhs);
         }
+    ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 
 

@@ -1,6 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <bsmpm/nitsche_boundary.h>
+#include <bsmpm/parameter_tools.h>
 
 namespace bsmpm
 {
@@ -64,6 +65,7 @@ namespace bsmpm
                             TrilinosWrappers::SparseMatrix  &matrix,
                             TrilinosWrappers::MPI::Vector   &rhs) const
   {
+    std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
     const double           beta =
@@ -123,11 +125,10 @@ namespace bsmpm
 
               Tensor<1, 2> g;
               if (condition->kind == CurveCondition::Kind::displacement)
-                g = increment_factor *
-                    (condition->function ?
-                       Tensor<1, 2>({condition->function->value(x, 0),
-                                     condition->function->value(x, 1)}) :
-                       exact->displacement(x));
+                g =
+                  increment_factor * (condition->function ?
+                                        condition->function_value(x, problem) :
+                                        exact->displacement(x));
               for (unsigned int i = 0; i < n; ++i)
                 cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
                                      beta * value[i] * g);
@@ -136,5 +137,6 @@ namespace bsmpm
           constraints.distribute_local_to_global(
             cell_matrix, cell_rhs, dof_indices, matrix, rhs);
         }
+    ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 } // namespace bsmpm

@@ -1,3 +1,4 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
 #include <bsmpm/parameter_tools.h>
@@ -69,6 +70,21 @@ namespace bsmpm
           values.push_back(static_cast<unsigned int>(v));
         }
       return values;
+    }
+
+
+
+    void
+    throw_if_any(const std::string &message, const MPI_Comm communicator)
+    {
+      const unsigned int rank  = Utilities::MPI::this_mpi_process(communicator);
+      const unsigned int first = Utilities::MPI::min(
+        message.empty() ? numbers::invalid_unsigned_int : rank, communicator);
+      if (first == numbers::invalid_unsigned_int)
+        return;
+      const std::string text =
+        Utilities::MPI::broadcast(communicator, message, first);
+      AssertThrow(false, ExcMessage(text));
     }
 
 

@@ -11,6 +11,7 @@
 
 #include <bsmpm/curve_output.h>
 #include <bsmpm/error_measures.h>
+#include <bsmpm/input_checks.h>
 #include <bsmpm/parameter_tools.h>
 #include <bsmpm/scene.h>
 
@@ -27,6 +28,7 @@ namespace bsmpm
     , grid(communicator)
     , points(grid)
     , output(communicator)
+    , checkpoint(communicator)
   {}
 
 
@@ -80,6 +82,7 @@ namespace bsmpm
     LinearSolver::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
+    Checkpoint::declare_parameters(prm);
     Verification::declare_parameters(prm);
   }
 
@@ -113,6 +116,7 @@ namespace bsmpm
     cut_cell_quadrature.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
+    checkpoint.parse_parameters(prm);
     verification.parse_parameters(prm);
     exact_solution = ExactSolution::create(prm, material, gravity);
   }
@@ -123,9 +127,16 @@ namespace bsmpm
   Scene::setup()
   {
     {
+      TimerOutput::Scope                            t(timer, "setup: checks");
+      std::vector<std::pair<std::string, Point<2>>> named;
+      if (has_probe)
+        named.emplace_back("Probe/Point", probe_position);
+      InputChecks::check(grid, region, layout, boundary_curves, named);
+    }
+    {
       TimerOutput::Scope t(timer, "setup: grid");
       output.prepare_directory();
-      grid.create();
+      grid.create(checkpoint.triangulation_file());
     }
     {
       TimerOutput::Scope t(timer, "setup: points");
@@ -147,6 +158,14 @@ namespace bsmpm
         {
           points.track(tracked);
           boundary_curves.read_initial_positions(points);
+        }
+      if (checkpoint.resuming())
+        {
+          // The checkpoint's points replace those generated as at the
+          // start, which gave the same ids, slots and initial positions.
+          checkpoint.read_points(points);
+          if (!tracked.empty())
+            points.track(tracked);
         }
       cut_cell_quadrature.initialize(boundary_curves);
     }
@@ -262,9 +281,17 @@ namespace bsmpm
 
 
   LinearSolver::Report
-  Scene::solve()
+  Scene::solve(const unsigned int step)
   {
-    TimerOutput::Scope            t(timer, "solve");
+    TimerOutput::Scope t(timer, "solve");
+    // A load that is not finite (an expression dividing by zero, a density
+    // or gravity of inf): say so before the solver turns it into NaN
+    // displacements.
+    AssertThrow(std::isfinite(assembly->rhs().l2_norm()),
+                ExcMessage("The loads of load step " + std::to_string(step) +
+                           " are not finite (NaN or inf): check the "
+                           "tractions, prescribed displacements, density and "
+                           "gravity of the scene."));
     TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
                                            communicator);
     const auto report = linear_solver.solve(assembly->matrix(),
@@ -272,6 +299,14 @@ namespace bsmpm
                                             assembly->rhs(),
                                             grid.dof_handler());
     assembly->constraints().distribute(solution);
+    AssertThrow(std::isfinite(solution.l2_norm()),
+                ExcMessage("The linear solver returned a displacement that is "
+                           "not finite in load step " +
+                           std::to_string(step) +
+                           " although the loads are finite: the system is "
+                           "singular (a body that is not held against rigid "
+                           "motion, or cells without stabilisation: Ghost "
+                           "penalty/Enable)."));
 
     for (const auto i : grid.locally_owned_dofs())
       increment(i) = solution(i);
@@ -307,29 +342,66 @@ namespace bsmpm
              Tensor<1, 2>                                        &w) {
         return implicit_boundary.support_displacement(
           boundary_curves, grid, x, field, w);
-      });
+      },
+      &cell_quality);
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
-      {
-        std::ostringstream where;
-        where << '(' << report.example[0] << ", " << report.example[1] << ')';
-        const double size = grid.lower_left().distance(grid.upper_right());
-        const bool far = report.example.distance(grid.lower_left()) > 10 * size;
-        AssertThrow(false,
-                    ExcMessage(std::to_string(report.n_left_grid) +
-                               " material point(s) left the background grid "
-                               "in load step " +
-                               std::to_string(step) + ", one of them to " +
-                               where.str() + ". " +
-                               (far ? "A displacement this far beyond the grid "
-                                      "points to an instability: a nearly "
-                                      "empty cell (Ghost penalty/Enable = "
-                                      "true stabilises such cells)." :
-                                      "Enlarge the grid or reduce the load "
-                                      "step.") +
-                               " The output of the previous step is intact."));
-      }
+      AssertThrow(false,
+                  ExcMessage(std::to_string(report.n_left_grid) +
+                             " material point(s) left the background grid "
+                             "in load step " +
+                             std::to_string(step) + ", one of them to " +
+                             [&] {
+                               std::ostringstream p;
+                               p.precision(6);
+                               p << '(' << report.example[0] << ", "
+                                 << report.example[1] << "). ";
+                               return p.str();
+                             }() +
+                             diagnose(report) +
+                             " The output of the previous step is intact."));
+  }
+
+
+
+  std::string
+  Scene::diagnose(const MaterialPoints::MoveReport &report) const
+  {
+    std::ostringstream cause;
+    cause.precision(3);
+    const double h = grid.min_cell_size();
+    if (report.n_non_finite > 0)
+      cause << "The displacements of " << report.n_non_finite
+            << " point(s) are not finite (NaN or inf): a parameter or an "
+               "expression of the scene gives a non-finite value.";
+    else if (report.example_quality >= 0 &&
+             report.example_quality < ghost_penalty.quality_threshold())
+      cause << "The point came from a poorly filled cell (support quality "
+            << report.example_quality << ", below the stabilisation threshold "
+            << ghost_penalty.quality_threshold()
+            << "): its material holds the cell's DoFs by almost nothing. "
+            << (ghost_penalty.enabled() ?
+                  "Raise Ghost penalty/Penalty, or use more points per cell." :
+                  "Enable the stabilisation (Ghost penalty/Enable = true).");
+    else if (report.max_increment >
+             100 * grid.lower_left().distance(grid.upper_right()))
+      cause << "The loads are far too large for the material: the largest "
+               "displacement increment of a point is "
+            << report.max_increment
+            << " m, far beyond the grid. Check the magnitudes of the loads "
+               "(tractions, pressure, density and gravity) against the "
+               "moduli.";
+    else if (report.max_increment > 0.5 * h)
+      cause << "The load step is too large: the largest displacement "
+               "increment of a point is "
+            << report.max_increment << " m, " << report.max_increment / h
+            << " cells, where small-strain MPM needs increments well below "
+               "a cell. Use more load steps (Loading/Load steps).";
+    else
+      cause << "The body reaches the edge of the grid: enlarge the grid "
+               "(Background grid).";
+    return cause.str();
   }
 
 
@@ -457,11 +529,17 @@ namespace bsmpm
     if (exact_solution && pcout.is_active())
       pcout << "exact solution     " << exact_solution->description() << '\n';
 
+    const unsigned int first_step =
+      checkpoint.resuming() ? checkpoint.read_state(run_summary, output) + 1 :
+                              1;
+    if (pcout.is_active())
+      for (const auto &record : run_summary.steps)
+        run_summary.print_step(pcout.get_stream(), record);
     update_curves();
-    if (output.enabled())
+    if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 
-    for (unsigned int step = 1; step <= n_load_steps; ++step)
+    for (unsigned int step = first_step; step <= n_load_steps; ++step)
       {
         const double load_factor = double(step) / n_load_steps;
         if (step > 1)
@@ -475,10 +553,11 @@ namespace bsmpm
           implicit_boundary.fits_prescribed_displacement(boundary_curves);
         if (has_prescribed)
           fit_prescribed_displacement(1. / n_load_steps);
+        cell_quality = support_qualities();
         assembly->assemble(load_factor,
                            1. / n_load_steps,
                            cell_moments,
-                           support_qualities(),
+                           cell_quality,
                            has_prescribed ? &prescribed : nullptr);
         if (linear_solver.estimates_condition() &&
             assembly->rhs().l2_norm() > 0)
@@ -490,7 +569,7 @@ namespace bsmpm
             double &largest = run_summary.quantities["condition_estimate"];
             largest         = std::max(largest, estimate);
           }
-        const auto solver_report = solve();
+        const auto solver_report = solve(step);
         move_points(step);
         update_curves();
         if (has_probe)
@@ -524,6 +603,8 @@ namespace bsmpm
 
         if (output.writes_step(step, n_load_steps))
           write_output(step, load_factor);
+        if (checkpoint.writes_step(step, n_load_steps))
+          write_checkpoint(step);
       }
 
     if (exact_solution)
@@ -534,12 +615,26 @@ namespace bsmpm
 
 
   void
+  Scene::write_checkpoint(const unsigned int step)
+  {
+    RunSummary so_far = run_summary;
+    for (const auto &[name, seconds] :
+         timer.get_summary_data(TimerOutput::total_wall_time))
+      so_far.timing[name] += seconds;
+    so_far.timing["total"] += total_timer.wall_time();
+    TimerOutput::Scope t(timer, "checkpoint");
+    checkpoint.write(step, grid, points, so_far, output);
+  }
+
+
+
+  void
   Scene::finish()
   {
     for (const auto &[name, seconds] :
          timer.get_summary_data(TimerOutput::total_wall_time))
-      run_summary.timing[name] = seconds;
-    run_summary.timing["total"] = total_timer.wall_time();
+      run_summary.timing[name] += seconds; // a resumed run adds its part
+    run_summary.timing["total"] += total_timer.wall_time();
 
     if (pcout.is_active())
       run_summary.print_results(pcout.get_stream());

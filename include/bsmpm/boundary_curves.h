@@ -57,6 +57,14 @@ namespace bsmpm
     /** Traction of "traction", or displacement of "displacement <ux>; <uy>"
      * (nullptr for "displacement exact"). */
     std::shared_ptr<FunctionParser<2>> function;
+    /** The parameter that gave the condition, for messages. */
+    std::string where;
+
+    /** The value of the function at @p x. If it is not finite and
+     * @p problem is empty, @p problem gets a message that names the
+     * parameter and the point (see ParameterTools::throw_if_any()). */
+    Tensor<1, 2>
+    function_value(const Point<2> &x, std::string &problem) const;
 
     /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
     static CurveCondition
@@ -245,6 +253,11 @@ namespace bsmpm
      */
     bool
     encloses_body(std::string &reason) const;
+
+    /** The points given directly (coordinates or a file) of every curve
+     * that has them, with the curve's name. */
+    std::vector<std::pair<std::string, std::vector<Point<2>>>>
+    given_points() const;
 
     /** Total number of boundary points. */
     unsigned int

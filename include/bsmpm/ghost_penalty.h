@@ -65,6 +65,13 @@ namespace bsmpm
       return use;
     }
 
+    /** The quality below which a vertex counts as weakly held. */
+    double
+    quality_threshold() const
+    {
+      return threshold;
+    }
+
     /**
      * Adds the face terms. @p quality holds the support quality of every
      * locally owned cell, by active_cell_index() (negative: no material). The

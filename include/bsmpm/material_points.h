@@ -55,6 +55,13 @@ namespace bsmpm
        * with volume, over all processes: the scales of the solution. */
       double max_displacement = 0;
       double max_stress       = 0;
+      /** Largest displacement increment of a point with volume. */
+      double max_increment = 0;
+      /** Points whose increment is not finite (NaN or inf). */
+      types::particle_index n_non_finite = 0;
+      /** Support quality (GhostPenalty) of the cell that the example point
+       * left, if the qualities were given; -1 otherwise. */
+      double example_quality = -1;
     };
 
     explicit MaterialPoints(const BackgroundGrid &grid);
@@ -121,16 +128,18 @@ namespace bsmpm
      * With @p prescribed (nodal values d^a of prescribed displacements, or
      * nullptr), the increment is u = w + M d^a and the strain B (d + d^a).
      * In the cells flagged in @p support_cells (by active_cell_index),
-     * @p support modifies w. The points are not re-sorted into cells; see
-     * sort_into_cells().
+     * @p support modifies w. @p cell_quality (by active_cell_index, if
+     * given) is reported for a point that leaves the grid. The points are not
+     * re-sorted into cells; see sort_into_cells().
      */
     MoveReport
     move(const Q1CellKernel                               &kernel,
          const LinearElasticMaterial                      &material,
          const LinearAlgebra::distributed::Vector<double> &increment,
          const LinearAlgebra::distributed::Vector<double> *prescribed = nullptr,
-         const std::vector<bool> *support_cells                       = nullptr,
-         const SupportFunction   &support                             = {});
+         const std::vector<bool>   *support_cells                     = nullptr,
+         const SupportFunction     &support                           = {},
+         const std::vector<double> *cell_quality = nullptr);
 
     /** Finds the cell and owner of every point after move(). */
     void

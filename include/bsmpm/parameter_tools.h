@@ -34,6 +34,15 @@ namespace bsmpm
     /** Throws an input error unless @p value is finite. */
     void
     require_finite(const double value, const std::string &what);
+
+    /**
+     * Collective: if any process passes a non-empty @p message, every
+     * process throws the message of the first such process. Errors found
+     * in a loop over a process' own cells must go through this, or the
+     * other processes would wait for it in the next collective call.
+     */
+    void
+    throw_if_any(const std::string &message, const MPI_Comm communicator);
   } // namespace ParameterTools
 } // namespace bsmpm
 

@@ -13,6 +13,7 @@
 #include <bsmpm/background_grid.h>
 #include <bsmpm/body_region.h>
 #include <bsmpm/boundary_curves.h>
+#include <bsmpm/checkpoint.h>
 #include <bsmpm/cut_cell_quadrature.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/ghost_penalty.h>
@@ -65,6 +66,14 @@ namespace bsmpm
     void
     run();
 
+    /** Makes run() continue from the checkpoint @p directory (see
+     * Checkpoint) instead of starting; call after parse_parameters(). */
+    void
+    resume_from(const std::string &directory)
+    {
+      checkpoint.resume_from(directory);
+    }
+
     const RunSummary &
     summary() const
     {
@@ -89,15 +98,20 @@ namespace bsmpm
     std::vector<double>
     support_qualities() const;
     LinearSolver::Report
-    solve();
+    solve(const unsigned int step);
     void
     move_points(const unsigned int step);
+    /** Why points left the grid, from what the step can see. */
+    std::string
+    diagnose(const MaterialPoints::MoveReport &report) const;
     void
     update_curves();
     void
     write_output(const unsigned int step, const double load_factor);
     void
     evaluate_errors();
+    void
+    write_checkpoint(const unsigned int step);
     void
     finish();
 
@@ -122,6 +136,7 @@ namespace bsmpm
     CutCellQuadrature               cut_cell_quadrature;
     LinearSolver                    linear_solver;
     OutputWriter                    output;
+    Checkpoint                      checkpoint;
     Verification                    verification;
     std::unique_ptr<ExactSolution>  exact_solution;
     std::unique_ptr<SystemAssembly> assembly;
@@ -133,6 +148,8 @@ namespace bsmpm
     /** Locally owned cells crossed by an IBM support band. */
     std::vector<bool>        band_cells;
     std::vector<CellMoments> cell_moments;
+    /** Support quality of every locally owned cell in this step. */
+    std::vector<double> cell_quality;
 
     /** An optional zero-volume point whose displacement is reported. */
     std::string  probe_name;
