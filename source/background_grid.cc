@@ -117,7 +117,7 @@ namespace bsmpm
 
 
   void
-  BackgroundGrid::create()
+  BackgroundGrid::create(const std::string &saved_triangulation)
   {
     // Coarse cells are trees in p4est: make as few as the refinement of a
     // coarser rectangle allows, since refinement is cheaper than many trees.
@@ -137,7 +137,10 @@ namespace bsmpm
       corner_lower,
       corner_upper,
       /*colorize=*/true);
-    tria.refine_global(refinements);
+    if (saved_triangulation.empty())
+      tria.refine_global(refinements);
+    else
+      tria.load(saved_triangulation);
 
     dofs.distribute_dofs(finite_element);
     owned_dofs = dofs.locally_owned_dofs();

@@ -15,6 +15,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace bsmpm
@@ -50,9 +51,12 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
-    /** Builds the triangulation and distributes the DoFs. */
+    /** Builds the triangulation and distributes the DoFs. With
+     * @p saved_triangulation (a file of Triangulation::save(), see
+     * Checkpoint), the refinement and partition are loaded from it, with the
+     * data attached to its cells. */
     void
-    create();
+    create(const std::string &saved_triangulation = "");
 
     const parallel::distributed::Triangulation<2> &
     triangulation() const

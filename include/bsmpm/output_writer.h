@@ -97,11 +97,27 @@ namespace bsmpm
     write_atomically(const std::string                         &path,
                      const std::function<void(std::ostream &)> &writer);
 
+    /** Saves or restores the records of the series written so far (see
+     * Checkpoint), so that a resumed run's .pvd files list every step. */
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      ar &collections;
+    }
+
   private:
     struct Record
     {
       double      time;
       std::string file;
+
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &time &file;
+      }
     };
 
     MPI_Comm     communicator;
