@@ -120,6 +120,30 @@ namespace bsmpm
 
 
 
+  std::vector<bool>
+  GhostPenalty::weak_cells(const BackgroundGrid      &grid,
+                           const std::vector<double> &quality) const
+  {
+    const auto                                &tria = grid.triangulation();
+    LinearAlgebra::distributed::Vector<double> all(
+      tria.global_active_cell_index_partitioner().lock());
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        all[cell->global_active_cell_index()] =
+          quality[cell->active_cell_index()];
+    all.update_ghost_values();
+    std::vector<bool> weak(tria.n_active_cells(), false);
+    for (const auto &cell : tria.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          const double q = all[cell->global_active_cell_index()];
+          weak[cell->active_cell_index()] = q >= 0 && q < threshold;
+        }
+    return weak;
+  }
+
+
+
   void
   GhostPenalty::assemble(
     const BackgroundGrid                             &grid,

@@ -24,28 +24,60 @@ namespace bsmpm
                                                  grid.cell_size(),
                                                  parts.material.stiffness());
 
-    // The couplings of the full grid: valid whichever cells hold points, so
-    // the sparsity pattern is built once for all load steps.
+    const MPI_Comm comm = grid.mpi_communicator();
+    make_matrix(
+      std::vector<bool>(grid.triangulation().n_active_cells(), false));
+    system_rhs.reinit(grid.locally_owned_dofs(), comm);
+    if (parts.implicit_boundary.fits_prescribed_displacement(parts.curves))
+      boundary_fit_matrix.reinit(system_matrix);
+  }
+
+
+
+  void
+  SystemAssembly::make_matrix(const std::vector<bool> &face_cells)
+  {
+    // The couplings of every cell of the grid: valid whichever cells hold
+    // points. Couplings across faces (ghost penalty) only near weak cells:
+    // on all faces they would make the matrix 2.8 times larger. Faces of
+    // ghost cells too: the rows of ghost DoFs that this process adds to
+    // must be in its own pattern.
+    const BackgroundGrid  &grid = parts.grid;
     const MPI_Comm         comm = grid.mpi_communicator();
     DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
-    if (parts.ghost_penalty.enabled())
-      DoFTools::make_flux_sparsity_pattern(grid.dof_handler(), dsp);
-    else
-      DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
+    DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
+    coupled_faces = face_cells;
+    if (!face_cells.empty())
+      {
+        std::vector<types::global_dof_index> here(Q1CellKernel::dofs_per_cell),
+          there(Q1CellKernel::dofs_per_cell);
+        for (const auto &cell : grid.dof_handler().active_cell_iterators())
+          if (!cell->is_artificial())
+            for (const unsigned int f : cell->face_indices())
+              if (!cell->at_boundary(f) &&
+                  !cell->neighbor(f)->is_artificial() &&
+                  (face_cells[cell->active_cell_index()] ||
+                   face_cells[cell->neighbor(f)->active_cell_index()]))
+                {
+                  cell->get_dof_indices(here);
+                  cell->neighbor(f)->get_dof_indices(there);
+                  for (const auto i : here)
+                    for (const auto j : there)
+                      {
+                        dsp.add(i, j);
+                        dsp.add(j, i);
+                      }
+                }
+      }
     SparsityTools::distribute_sparsity_pattern(dsp,
                                                grid.locally_owned_dofs(),
                                                comm,
                                                grid.locally_relevant_dofs());
+    system_matrix.clear();
     system_matrix.reinit(grid.locally_owned_dofs(),
                          grid.locally_owned_dofs(),
                          dsp,
                          comm);
-    system_rhs.reinit(grid.locally_owned_dofs(), comm);
-    if (parts.implicit_boundary.fits_prescribed_displacement(parts.curves))
-      boundary_fit_matrix.reinit(grid.locally_owned_dofs(),
-                                 grid.locally_owned_dofs(),
-                                 dsp,
-                                 comm);
   }
 
 
@@ -114,6 +146,30 @@ namespace bsmpm
     const BackgroundGrid &grid        = parts.grid;
     const Q1CellKernel   &kernel      = *cell_kernel;
     const auto           &constraints = system_constraints;
+    if (parts.ghost_penalty.enabled())
+      {
+        // The matrix must hold the couplings across the faces of the weak
+        // cells. If it does not, rebuild it for them and the cells next to
+        // them, so that a boundary that moves by less than a cell per step
+        // needs no rebuild.
+        TimerOutput::Scope      t(timer, "ghost penalty");
+        const std::vector<bool> weak =
+          parts.ghost_penalty.weak_cells(grid, quality);
+        bool held = true;
+        for (unsigned int c = 0; c < weak.size() && held; ++c)
+          held = !weak[c] || coupled_faces[c];
+        if (Utilities::MPI::min(held ? 1 : 0, grid.mpi_communicator()) == 0)
+          {
+            std::vector<bool> margin = weak;
+            for (const auto &cell :
+                 grid.triangulation().active_cell_iterators())
+              if (weak[cell->active_cell_index()])
+                for (const unsigned int f : cell->face_indices())
+                  if (!cell->at_boundary(f))
+                    margin[cell->neighbor(f)->active_cell_index()] = true;
+            make_matrix(margin);
+          }
+      }
     timer.enter_subsection("assembly");
     system_matrix = 0;
     system_rhs    = 0;

@@ -104,6 +104,16 @@ namespace bsmpm
                    const std::vector<CellMoments>  &moments,
                    const AffineConstraints<double> &constraints);
 
+    /**
+     * The cells (by active_cell_index(), locally owned and ghost) whose
+     * faces assemble() can stabilise, given the qualities of the locally
+     * owned cells: those with material below the quality threshold. The
+     * matrix needs the couplings across their faces.
+     */
+    std::vector<bool>
+    weak_cells(const BackgroundGrid      &grid,
+               const std::vector<double> &quality) const;
+
     /** Number of faces stabilised by the last assemble() on this process. */
     unsigned int
     n_faces() const

@@ -130,6 +130,17 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
     TrilinosWrappers::SparseMatrix boundary_fit_matrix;
+    /**
+     * Builds the sparsity pattern and the matrix: the couplings of every
+     * cell, and across the faces of the cells flagged in @p face_cells (by
+     * active_cell_index(), owned and ghost; empty for none), where the
+     * ghost penalty acts.
+     */
+    void
+    make_matrix(const std::vector<bool> &face_cells);
+
+    /** Cells whose face couplings the matrix holds. */
+    std::vector<bool> coupled_faces;
     /** Locally owned DoFs that no cell with material touches. */
     std::vector<types::global_dof_index> unsupported_dofs;
     unsigned int                         active_cells = 0;
