@@ -1,3 +1,4 @@
+#include <bsmpm/constitutive_model.h>
 #include <bsmpm/material.h>
 
 namespace bsmpm
@@ -38,6 +39,8 @@ namespace bsmpm
                       "Mass density in kg/m^3; with the gravity of the "
                       "Loading section it gives the body force.");
     prm.leave_subsection();
+    // "Constitutive model" and the subsections of the models.
+    declare_constitutive_parameters(prm);
   }
 
 
@@ -51,8 +54,11 @@ namespace bsmpm
     plane_model = prm.get("Model") == "plane strain" ? Model::plane_strain :
                                                        Model::plane_stress;
     rho         = prm.get_double("Density");
+    const std::string constitutive_model = prm.get("Constitutive model");
     prm.leave_subsection();
     check_and_build();
+    check_constitutive_model_compatibility(constitutive_model,
+                                           plane_model == Model::plane_stress);
   }
 
 

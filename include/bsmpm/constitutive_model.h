@@ -1,0 +1,252 @@
+#ifndef bsmpm_constitutive_model_h
+#define bsmpm_constitutive_model_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * What a material point keeps of its constitutive model between load
+   * steps.
+   */
+  struct ConstitutiveState
+  {
+    /** Elastic strain: the small-strain elastic strain, or the logarithmic
+     * elastic strain ln(b_e)/2 in finite strain. In plane strain its zz
+     * component is carried. */
+    SymmetricTensor<2, 3> elastic_strain;
+    /** Accumulated equivalent plastic strain, sum of sqrt(2/3) |d eps_p|. */
+    double equivalent_plastic_strain = 0;
+  };
+
+
+
+  /**
+   * What update() returns.
+   */
+  struct ConstitutiveResponse
+  {
+    /** Cauchy stress (small strain) or Kirchhoff stress (finite strain). */
+    SymmetricTensor<2, 3> stress;
+    /** Algorithmic tangent d stress / d trial elastic strain (minor
+     * symmetries; without major symmetry for non-associated flow). */
+    SymmetricTensor<4, 3> tangent;
+    /** Whether the step returned to the yield surface. */
+    bool yielded = false;
+  };
+
+
+
+  /**
+   * A constitutive model in three dimensions, usable for small strain
+   * (trial elastic strain in, Cauchy stress out) and for finite strain by
+   * the Hencky/exponential-map route (trial logarithmic elastic strain
+   * ln(b_e^tr)/2 in, Kirchhoff stress out): for isotropic models with
+   * Hencky elasticity both are the same map (doc/materials.md, Sec. 1).
+   *
+   * Each model has its own parameter subsection of "Material"; the elastic
+   * constants are the section's "Young's modulus" and "Poisson's ratio".
+   * update() is const and thread-safe.
+   */
+  class ConstitutiveModel
+  {
+  public:
+    ConstitutiveModel(const double youngs_modulus, const double poissons_ratio);
+    virtual ~ConstitutiveModel() = default;
+
+    /**
+     * On entry state.elastic_strain is the TRIAL elastic strain and
+     * state.equivalent_plastic_strain the converged one of the last step;
+     * on exit both are the returned (updated) values.
+     */
+    virtual ConstitutiveResponse
+    update(ConstitutiveState &state) const = 0;
+
+    /** Yield function: <= 0 for admissible stresses; -infinity for linear
+     * elasticity. */
+    virtual double
+    yield_function(const SymmetricTensor<2, 3> &stress,
+                   const double                 eq_plastic_strain) const;
+
+    /** Tangent of an elastic step (for the linear elastic model in plane
+     * stress: with sigma_zz = 0 condensed). */
+    virtual SymmetricTensor<4, 3>
+    elastic_tangent() const;
+
+    /** True for linear elasticity: no state, stress linear in the strain,
+     * so that the code may keep its linear fast path. */
+    virtual bool
+    is_linear() const;
+
+    /** The name as given in "Material/Constitutive model". */
+    virtual std::string
+    name() const = 0;
+
+    double
+    youngs_modulus() const
+    {
+      return E;
+    }
+    double
+    poissons_ratio() const
+    {
+      return nu;
+    }
+    double
+    shear_modulus() const
+    {
+      return mu;
+    }
+    double
+    bulk_modulus() const
+    {
+      return kappa;
+    }
+
+  protected:
+    /** D^e : eps = K tr(eps) 1 + 2 mu dev(eps). */
+    SymmetricTensor<2, 3>
+    elastic_stress(const SymmetricTensor<2, 3> &elastic_strain) const;
+
+    /** The three-dimensional isotropic stiffness K 1 (x) 1 + 2 mu I_d. */
+    const SymmetricTensor<4, 3> &
+    isotropic_stiffness() const
+    {
+      return stiffness_3d;
+    }
+
+    /** t += a I_d + b n (x) n, written entry by entry (deal.II's
+     * outer_product of symmetric tensors is slow). */
+    static void
+    add_deviatoric_terms(SymmetricTensor<4, 3>       &t,
+                         const double                 a,
+                         const double                 b,
+                         const SymmetricTensor<2, 3> &n);
+
+    double                E;
+    double                nu;
+    double                mu;
+    double                kappa;
+    SymmetricTensor<4, 3> stiffness_3d;
+  };
+
+
+
+  /**
+   * Isotropic linear elasticity. In plane strain the in-plane block of the
+   * tangent is LinearElasticMaterial::stiffness(); in plane stress update()
+   * replaces the zz elastic strain by the one that makes sigma_zz = 0 and
+   * the tangent is that of the condensed map.
+   */
+  class LinearElasticModel : public ConstitutiveModel
+  {
+  public:
+    LinearElasticModel(const double youngs_modulus,
+                       const double poissons_ratio,
+                       const bool   plane_stress = false);
+
+    ConstitutiveResponse
+    update(ConstitutiveState &state) const override;
+    SymmetricTensor<4, 3>
+    elastic_tangent() const override;
+    bool
+    is_linear() const override;
+    std::string
+    name() const override;
+
+  private:
+    bool                  plane_stress;
+    SymmetricTensor<4, 3> stiffness;
+  };
+
+
+
+  /**
+   * Eigenvalues and orthonormal eigenvectors of a symmetric tensor (Jacobi's
+   * method), in descending order, and the assembly of isotropic tensor
+   * functions and of their derivatives from principal values
+   * (doc/materials.md, Sec. 5).
+   */
+  class SpectralDecomposition
+  {
+  public:
+    explicit SpectralDecomposition(const SymmetricTensor<2, 3> &x);
+
+    /** sum_A y_A n_A (x) n_A. */
+    SymmetricTensor<2, 3>
+    assemble(const std::array<double, 3> &y) const;
+
+    /**
+     * d y / d x = sum_AB dy_dx[A][B] M_A (x) M_B
+     *             + sum_{A<B} rho_AB W_AB (x) W_AB,
+     * with spin moduli rho = {rho_01, rho_02, rho_12}.
+     */
+    SymmetricTensor<4, 3>
+    assemble_tangent(const Tensor<2, 3>          &dy_dx,
+                     const std::array<double, 3> &rho) const;
+
+    /** The difference quotient (y_a - y_b) / (x_a - x_b), replaced by its
+     * limit (limit_a + limit_b) / 2 where the gap is below about the cube
+     * root of the machine epsilon times max(|x_a|, |x_b|). */
+    static double
+    spin_modulus(const double x_a,
+                 const double x_b,
+                 const double y_a,
+                 const double y_b,
+                 const double limit_a,
+                 const double limit_b);
+
+    std::array<double, 3>       values;
+    std::array<Tensor<1, 3>, 3> vectors;
+  };
+
+
+
+  /**
+   * f(x) = sum_A f(x_A) n_A (x) n_A of a symmetric tensor and its derivative
+   * d f(x) / d x, robust for equal and nearly equal eigenvalues. With f = ln
+   * it gives the logarithmic strain ln(b)/2 (times 2) and d ln(b) / d b of
+   * the finite-strain tangent; with f = exp, b_e = exp(2 eps_e).
+   */
+  std::pair<SymmetricTensor<2, 3>, SymmetricTensor<4, 3>>
+  isotropic_tensor_function(const SymmetricTensor<2, 3>         &x,
+                            const std::function<double(double)> &f,
+                            const std::function<double(double)> &df);
+
+  /**
+   * Declares "Material/Constitutive model" and the subsections of the
+   * models ("Material/von Mises", "Material/Drucker-Prager"). Call it at the
+   * top level: it enters "Material" itself. LinearElasticMaterial::
+   * declare_parameters() calls it.
+   */
+  void
+  declare_constitutive_parameters(ParameterHandler &prm);
+
+  /**
+   * The model chosen in "Material/Constitutive model", with the elastic
+   * constants and the plane model of "Material" (checked as
+   * LinearElasticMaterial does). Refuses plasticity in plane stress.
+   */
+  std::unique_ptr<ConstitutiveModel>
+  create_constitutive_model(ParameterHandler &prm);
+
+  /**
+   * Throws unless the constitutive model @p name can be used with the
+   * two-dimensional idealisation (plasticity needs plane strain).
+   */
+  void
+  check_constitutive_model_compatibility(const std::string &name,
+                                         const bool         plane_stress);
+} // namespace bsmpm
+
+#endif
