@@ -61,12 +61,15 @@ namespace bsmpm
                 {
                   cell->get_dof_indices(here);
                   cell->neighbor(f)->get_dof_indices(there);
+                  // The face matrix couples every DoF of the two cells with
+                  // every other, those of a ghost neighbour among
+                  // themselves too: the cell pattern above holds only the
+                  // owned cells' couplings.
+                  here.insert(here.end(), there.begin(), there.end());
                   for (const auto i : here)
-                    for (const auto j : there)
-                      {
-                        dsp.add(i, j);
-                        dsp.add(j, i);
-                      }
+                    for (const auto j : here)
+                      dsp.add(i, j);
+                  here.resize(Q1CellKernel::dofs_per_cell);
                 }
       }
     SparsityTools::distribute_sparsity_pattern(dsp,
