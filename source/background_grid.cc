@@ -12,6 +12,8 @@
 #include <bsmpm/parameter_tools.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -80,11 +82,29 @@ namespace bsmpm
                   corner_upper[1] > corner_lower[1],
                 ExcMessage("Background grid: the upper right corner must lie "
                            "above and to the right of the lower left corner."));
+    for (unsigned int d = 0; d < 2; ++d)
+      ParameterTools::require_finite(corner_upper[d] - corner_lower[d],
+                                     "Background grid: the side of the grid "
+                                     "in direction " +
+                                       std::to_string(d));
     const double cell_length = prm.get_double("Cell size");
     if (cell_length > 0)
       for (unsigned int d = 0; d < 2; ++d)
         {
           const double n = (corner_upper[d] - corner_lower[d]) / cell_length;
+          // Cells are counted in unsigned int: refuse what it cannot hold
+          // before the conversion (InputChecks refuses more than 2e9 cells
+          // in all).
+          if (!(n <= 2e9))
+            {
+              std::ostringstream message;
+              message << std::setprecision(3) << "Background grid: the cell "
+                      << "size " << cell_length << " gives " << n
+                      << " cells in direction " << d
+                      << ", beyond what bsmpm can index (2e9 cells). Use a "
+                         "larger cell size.";
+              AssertThrow(false, ExcMessage(message.str()));
+            }
           AssertThrow(std::abs(n - std::round(n)) < 1e-8 * n && n >= 1,
                       ExcMessage("Background grid: the cell size " +
                                  std::to_string(cell_length) +
@@ -140,7 +160,25 @@ namespace bsmpm
     if (saved_triangulation.empty())
       tria.refine_global(refinements);
     else
-      tria.load(saved_triangulation);
+      try
+        {
+          tria.load(saved_triangulation);
+        }
+      catch (const ExceptionBase &e)
+        {
+          // deal.II's message names neither the files nor the checkpoint.
+          std::ostringstream message;
+          e.print_info(message);
+          std::string text = Utilities::trim(message.str());
+          text             = text.substr(0, text.find('\n'));
+          AssertThrow(false,
+                      ExcMessage("Checkpoint: the grid saved in '" +
+                                 saved_triangulation +
+                                 "' (and its .info and _fixed.data files) "
+                                 "cannot be read: the checkpoint is "
+                                 "incomplete or damaged (" +
+                                 text + ")"));
+        }
 
     dofs.distribute_dofs(finite_element);
     owned_dofs = dofs.locally_owned_dofs();

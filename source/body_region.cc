@@ -111,6 +111,12 @@ namespace bsmpm
                                  "above and to the right of the lower left "
                                  "corner."));
           if (region_shape == Shape::rectangle_minus_disc)
+            AssertThrow(disc_radius > 0,
+                        ExcMessage("Body region: the Disc radius of a "
+                                   "rectangle minus disc must be positive "
+                                   "(a rectangle without a hole is the shape "
+                                   "'rectangle')."));
+          if (region_shape == Shape::rectangle_minus_disc)
             for (unsigned int d = 0; d < 2; ++d)
               AssertThrow((disc_center[d] == lower_left[d] ||
                            disc_center[d] - disc_radius >= lower_left[d]) &&

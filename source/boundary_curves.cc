@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -60,6 +61,10 @@ namespace bsmpm
       AssertThrow(in,
                   ExcMessage(where + ": cannot read the points file '" + file +
                              "'."));
+      // An ifstream opens a directory and reads nothing from it.
+      AssertThrow(std::filesystem::is_regular_file(file),
+                  ExcMessage(where + ": the points file '" + file +
+                             "' is not a regular file (a directory?)."));
       std::vector<Point<2>> points;
       std::string           line;
       for (unsigned int number = 1; std::getline(in, line); ++number)
@@ -145,20 +150,33 @@ namespace bsmpm
         condition.kind =
           kind == "traction" ? Kind::traction : Kind::displacement;
         condition.function = std::make_shared<FunctionParser<2>>(2);
+        std::string problem;
         try
           {
             condition.function->initialize("x,y",
                                            arguments,
                                            {{"pi", numbers::PI}});
+            // The parser reports syntax errors only when it first
+            // evaluates, which would be in a loop over one process' cells:
+            // evaluate once here, on every process alike.
+            for (unsigned int c = 0; c < 2; ++c)
+              condition.function->value(Point<2>(), c);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream message;
+            e.print_info(message);
+            problem = Utilities::trim(message.str());
           }
         catch (...)
           {
-            AssertThrow(false,
-                        ExcMessage(where + ": '" + kind +
-                                   "' needs two expressions of x and y "
-                                   "separated by ';', got '" +
-                                   arguments + "'."));
+            problem = "not understood";
           }
+        AssertThrow(problem.empty(),
+                    ExcMessage(where + ": '" + kind +
+                               "' needs two expressions of x and y "
+                               "separated by ';', got '" +
+                               arguments + "' (" + problem + ")."));
       }
     else if (text == "exact traction")
       condition.kind = Kind::exact_traction;
@@ -285,7 +303,7 @@ namespace bsmpm
                           "boundary).");
         prm.declare_entry("Number of points",
                           "5",
-                          Patterns::Integer(2),
+                          Patterns::Integer(2, max_points_per_edge),
                           "region edge: points per edge, ends included.");
         prm.declare_entry("Coordinates",
                           "",
@@ -386,6 +404,26 @@ namespace bsmpm
         prm.leave_subsection();
       }
     prm.leave_subsection();
+
+    // Conditions taken from the exact solution need one. (Checked here, on
+    // every process: where they are used, in a loop over one process'
+    // cells, an error would leave the others waiting.)
+    prm.enter_subsection("Exact solution");
+    const bool has_exact_solution = prm.get("Name") != "none";
+    prm.leave_subsection();
+    for (const auto &curve : curves)
+      for (const auto &condition : curve.conditions)
+        AssertThrow(has_exact_solution ||
+                      (condition.kind != CurveCondition::Kind::exact_traction &&
+                       (condition.kind != CurveCondition::Kind::displacement ||
+                        condition.function)),
+                    ExcMessage(
+                      condition.where + ": '" + condition.kind_name() +
+                      (condition.kind == CurveCondition::Kind::displacement ?
+                         " exact" :
+                         "") +
+                      "' needs an exact solution in the 'Exact "
+                      "solution' section (its Name is none)."));
   }
 
 
@@ -592,7 +630,18 @@ namespace bsmpm
             curve.stresses.push_back(stresses[slot]);
           }
         rebuild(curve);
-        curve.pieces = CurveCellIntersection::cut(*curve.spline, uniform);
+        try
+          {
+            curve.pieces = CurveCellIntersection::cut(*curve.spline, uniform);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream message;
+            e.print_info(message);
+            AssertThrow(false,
+                        ExcMessage("Boundary curves/" + curve.name + ": " +
+                                   Utilities::trim(message.str())));
+          }
       }
   }
 

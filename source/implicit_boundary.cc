@@ -49,12 +49,12 @@ namespace bsmpm
       "(doc/implicit-boundary.md).");
     prm.declare_entry("Points along piece",
                       "2",
-                      Patterns::Integer(1),
+                      Patterns::Integer(1, 100),
                       "Gauss points along each curve piece for the band "
                       "integrals (paper: 2).");
     prm.declare_entry("Points across band",
                       "3",
-                      Patterns::Integer(1),
+                      Patterns::Integer(1, 100),
                       "Gauss points across the band (paper: 3).");
     prm.declare_entry(
       "Formulation",

@@ -26,9 +26,11 @@ namespace bsmpm
                       "(and direct if CG does not converge).");
     prm.declare_entry("Tolerance",
                       "1e-12",
-                      Patterns::Double(0.),
+                      Patterns::Double(1e-15),
                       "cg amg: stop when the residual is below this fraction "
-                      "of the right-hand side.");
+                      "of the right-hand side; at least 1e-15 (below "
+                      "round-off CG would iterate on into underflow and a "
+                      "division by zero).");
     prm.declare_entry("Maximum iterations",
                       "10000",
                       Patterns::Integer(1),

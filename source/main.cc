@@ -4,14 +4,18 @@
 
 #include <bsmpm/scene.h>
 
+#include <boost/archive/archive_exception.hpp>
+
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -209,6 +213,26 @@ namespace
     return text;
   }
 
+  /** Why @p file, opened as @p in, cannot be read as a text file, or
+   * nothing. (An ifstream opens a directory without complaint and reads
+   * nothing from it.) */
+  std::string
+  unreadable(const std::filesystem::path &file, const std::ifstream &in)
+  {
+    std::error_code code;
+    if (!std::filesystem::exists(file, code))
+      return "no such file";
+    if (std::filesystem::is_directory(file, code))
+      return "it is a directory";
+    if (!std::filesystem::is_regular_file(file, code))
+      return "it is not a regular file";
+    if (!in)
+      return "it cannot be opened";
+    return "";
+  }
+
+
+
   /**
    * A parameter file with its "include" lines replaced by the files they
    * name, each resolved against the folder of the file that includes it
@@ -219,17 +243,25 @@ namespace
   {
     std::string                                       text;
     std::vector<std::pair<std::string, unsigned int>> origin;
+    std::string                                       top; // the file given
 
     void
-    expand(const std::filesystem::path &file, const unsigned int depth = 0)
+    expand(const std::filesystem::path &file,
+           const unsigned int           depth       = 0,
+           const std::string           &included_by = "")
     {
+      if (depth == 0)
+        top = file.string();
       if (depth > 16)
         throw std::runtime_error("'" + file.string() +
                                  "': includes nest too deep (a cycle?).");
-      std::ifstream in(file);
-      if (!in)
-        throw std::runtime_error("cannot read the parameter file '" +
-                                 file.string() + "'.");
+      std::ifstream     in(file);
+      const std::string problem = unreadable(file, in);
+      if (!problem.empty())
+        throw std::runtime_error(
+          "cannot read the parameter file '" + file.string() + "'" +
+          (included_by.empty() ? "" : " (included by " + included_by + ")") +
+          ": " + problem + ".");
       std::string  line;
       unsigned int number = 0;
       while (std::getline(in, line))
@@ -245,9 +277,16 @@ namespace
               std::filesystem::path included(name);
               if (included.is_relative())
                 included = file.parent_path() / included;
-              expand(included, depth + 1);
+              expand(included,
+                     depth + 1,
+                     "line " + std::to_string(number) + " of '" +
+                       file.string() + "'");
               continue;
             }
+          if (line.find('\0') != std::string::npos)
+            throw std::runtime_error(
+              "'" + file.string() + "' is not a parameter file: line " +
+              std::to_string(number) + " holds binary data.");
           text += line + "\n";
           origin.emplace_back(file.string(), number);
         }
@@ -299,14 +338,23 @@ namespace
       return "";
     }
 
-    /** Replaces "Line <n> of file <<input>>" by the true file and line. */
+    /** Replaces "Line <n> of file <<input>>" by the true file and line,
+     * and "the parameter file <<input>>" by the file's name. */
     std::string
     locate(const std::string &message) const
     {
       const std::string key   = "Line <";
       const auto        start = message.find(key);
       if (start == std::string::npos)
-        return message;
+        {
+          const std::string input = "the parameter file <<input>>";
+          const auto        at    = message.find(input);
+          if (at == std::string::npos)
+            return message;
+          return message.substr(0, at) + "'" + top +
+                 "' (with the files it includes)" +
+                 message.substr(at + input.size());
+        }
       const auto end = message.find("> of file <<input>>", start);
       if (end == std::string::npos)
         return message;
@@ -339,6 +387,99 @@ namespace
         trimmed += (trimmed.empty() ? "" : "\n") + line.substr(first);
       }
     return trimmed.empty() ? e.what() : trimmed;
+  }
+
+  /**
+   * Tells, after an error on this process, whether every process has one,
+   * by a barrier on a communicator of its own that a process still at work
+   * (or waiting in a collective call for this one) does not enter.
+   */
+  class ErrorChannel
+  {
+  public:
+    ErrorChannel()
+    {
+      MPI_Comm_dup(MPI_COMM_WORLD, &communicator);
+    }
+
+    ~ErrorChannel()
+    {
+      if (!pending)
+        MPI_Comm_free(&communicator);
+    }
+
+    /** Whether all processes arrive here within @p seconds. */
+    bool
+    all_failed(const double seconds = 5.)
+    {
+      int n_processes = 1;
+      MPI_Comm_size(communicator, &n_processes);
+      if (n_processes == 1)
+        return true;
+      MPI_Request request;
+      MPI_Ibarrier(communicator, &request);
+      pending          = true;
+      const auto start = std::chrono::steady_clock::now();
+      for (;;)
+        {
+          int done = 0;
+          MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+          if (done)
+            {
+              pending = false;
+              return true;
+            }
+          if (std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            start)
+                .count() > seconds)
+            return false;
+          std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+    }
+
+  private:
+    MPI_Comm communicator;
+    bool     pending = false;
+  };
+
+
+
+  /**
+   * Parses "A/B/Name=value" given as @p option ("--set", "--sweep") into
+   * @p prm. Errors name the option and the assignment as typed, not the
+   * text it was turned into.
+   */
+  void
+  apply_override(dealii::ParameterHandler &prm,
+                 const std::string        &assignment,
+                 const std::string        &option)
+  {
+    const std::string as_typed = option + " \"" + assignment + "\"";
+    // A line break would end the assignment and start a line of its own.
+    if (assignment.find_first_of("\n\r") != std::string::npos)
+      throw std::runtime_error(as_typed + ": the value must be a single line.");
+    const std::string as_prm = override_as_prm(assignment);
+    try
+      {
+        prm.parse_input_from_string(as_prm, option + " " + assignment);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        // "Line <n> of file <input string>: ..." names the generated text:
+        // drop it, and put deal.II's message on one line.
+        std::string message = message_of(e);
+        if (message.rfind("Line <", 0) == 0 &&
+            message.find(">:") != std::string::npos)
+          message = message.substr(message.find(">:") + 2);
+        std::string flat;
+        for (const char c : message)
+          if (!std::isspace(static_cast<unsigned char>(c)))
+            flat += c;
+          else if (!flat.empty() && flat.back() != ' ')
+            flat += ' ';
+        throw std::runtime_error(as_typed + ": " +
+                                 dealii::Utilities::trim(flat));
+      }
   }
 } // namespace
 
@@ -380,7 +521,26 @@ main(int argc, char **argv)
     }
 
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const bool   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  ErrorChannel errors;
+
+  // An error ends the run with exit code 1. Errors are meant to be found by
+  // every process alike (ParameterTools::throw_if_any); one found by a
+  // process alone would leave the others waiting for it in their next
+  // collective call: then the run is stopped with its message.
+  const auto fail = [&](const std::string &message) {
+    if (errors.all_failed())
+      {
+        if (root)
+          std::cerr << "bsmpm: error: " << message << std::endl;
+        return 1;
+      }
+    std::cerr << "bsmpm: error: " << message << " (found by process "
+              << Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)
+              << " alone: stopping the others)" << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1);
+    return 1;
+  };
 
   try
     {
@@ -399,24 +559,36 @@ main(int argc, char **argv)
             {
               bsmpm::Checkpoint::check_resume_override(
                 assignment.substr(0, assignment.find('=')));
-              prm.parse_input_from_string(override_as_prm(assignment),
-                                          "--set " + assignment);
+              apply_override(prm, assignment, "--set");
             }
           if (root)
             std::cout << "resuming from " << from << "\n";
           bsmpm::Scene scene(MPI_COMM_WORLD);
           scene.parse_parameters(prm);
           scene.resume_from(from);
-          scene.run();
+          try
+            {
+              scene.run();
+            }
+          catch (const boost::archive::archive_exception &e)
+            {
+              // Reading the checkpoint's archives failed; boost's message
+              // ("input stream error") names nothing.
+              if (e.code ==
+                  boost::archive::archive_exception::output_stream_error)
+                throw;
+              throw std::runtime_error(
+                "Checkpoint '" + from +
+                "': its files 'state' and 'points' cannot be read: "
+                "truncated or damaged (" +
+                e.what() +
+                "). Resume from an earlier checkpoint-<step> directory.");
+            }
           return 0;
         }
       if (line.parameter_file.empty())
         throw std::runtime_error("no parameter file given.\n" +
                                  std::string(usage));
-      if (!std::filesystem::is_regular_file(line.parameter_file))
-        throw std::runtime_error("cannot read the parameter file '" +
-                                 line.parameter_file + "'.");
-
       ParameterText text;
       text.expand(std::filesystem::absolute(line.parameter_file));
       const std::vector<std::string> paths = declared_paths(prm);
@@ -462,11 +634,11 @@ main(int argc, char **argv)
         }
       for (const auto &assignment : line.overrides)
         {
-          const std::string as_prm = override_as_prm(assignment);
+          override_as_prm(assignment); // checks the form
           check_declared(assignment.substr(0, assignment.find('=')),
                          paths,
                          "--set \"" + assignment + "\"");
-          prm.parse_input_from_string(as_prm, "--set " + assignment);
+          apply_override(prm, assignment, "--set");
         }
       if (prm.get("Scene name").empty())
         prm.set("Scene name",
@@ -493,6 +665,9 @@ main(int argc, char **argv)
       values.erase(std::remove(values.begin(), values.end(), ""), values.end());
       if (values.empty())
         throw std::runtime_error("--sweep \"" + line.sweep + "\": no values.");
+      // Every value is checked before the first run.
+      for (const auto &value : values)
+        apply_override(prm, path + "=" + value, "--sweep");
       prm.enter_subsection("Output");
       const std::string base = prm.get("Directory");
       prm.leave_subsection();
@@ -502,8 +677,7 @@ main(int argc, char **argv)
       for (unsigned int k = 0; k < values.size(); ++k)
         {
           const std::string assignment = path + "=" + values[k];
-          prm.parse_input_from_string(override_as_prm(assignment),
-                                      "--sweep " + assignment);
+          apply_override(prm, assignment, "--sweep");
           const std::string directory = base + "/sweep-" + std::to_string(k);
           prm.enter_subsection("Output");
           prm.set("Directory", directory);
@@ -533,15 +707,11 @@ main(int argc, char **argv)
     }
   catch (const ExceptionBase &e)
     {
-      if (root)
-        std::cerr << "bsmpm: error: " << message_of(e) << std::endl;
-      return 1;
+      return fail(message_of(e));
     }
   catch (const std::exception &e)
     {
-      if (root)
-        std::cerr << "bsmpm: error: " << e.what() << std::endl;
-      return 1;
+      return fail(e.what());
     }
   return 0;
 }

@@ -12,7 +12,7 @@ namespace bsmpm
     prm.enter_subsection("Boundary curves");
     prm.declare_entry("Gauss points per piece",
                       "4",
-                      Patterns::Integer(1),
+                      Patterns::Integer(1, 100),
                       "Gauss points on every piece of a loaded curve in a "
                       "grid cell (the paper uses 4).");
     prm.leave_subsection();

@@ -36,7 +36,7 @@ namespace bsmpm
                       "gamma in the penalty gamma E / h of Nitsche's method.");
     prm.declare_entry("Gauss points per piece",
                       "4",
-                      Patterns::Integer(1),
+                      Patterns::Integer(1, 100),
                       "Gauss points on each piece of a supported curve.");
     prm.leave_subsection();
   }

@@ -44,9 +44,10 @@ namespace bsmpm
     prm.enter_subsection("Loading");
     prm.declare_entry("Load steps",
                       "1",
-                      Patterns::Integer(1),
+                      Patterns::Integer(1, 100000),
                       "Number of equal load increments; the load factor of "
-                      "step n is n / (load steps).");
+                      "step n is n / (load steps). At most 100000 (each "
+                      "step is a linear solve).");
     prm.declare_entry("Gravity",
                       "0, 0",
                       ParameterTools::point_pattern(),

@@ -56,6 +56,10 @@ namespace bsmpm
                         ExcMessage("Verification: bound '" + item +
                                    "' has no number after the operator."));
           }
+        // A bound of inf always holds and one of NaN never does.
+        AssertThrow(std::isfinite(bound.value),
+                    ExcMessage("Verification: bound '" + item +
+                               "' is not a finite number."));
         bounds.push_back(bound);
       }
   }

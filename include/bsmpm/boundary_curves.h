@@ -169,9 +169,14 @@ namespace bsmpm
   {
   public:
     static constexpr unsigned int max_curves = 8;
+    /** Most tracking points per region edge ("Number of points"): far
+     * more than any grid resolves, few enough to build in a moment. */
+    static constexpr int max_points_per_edge = 100000;
 
     static void
     declare_parameters(ParameterHandler &prm);
+    /** Reads the curves; also reads "Exact solution/Name" (declared by the
+     * Scene) to refuse conditions that need an exact solution without one. */
     void
     parse_parameters(ParameterHandler &prm);
 
