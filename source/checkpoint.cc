@@ -23,7 +23,8 @@ namespace boost
     serialize(Archive &ar, bsmpm::RunSummary::Step &s, const unsigned int)
     {
       ar &s.number &s.load_factor &s.solver &s.iterations &s.refinement_steps &s
-        .relative_residual &s.n_active_cells;
+        .relative_residual &s.n_active_cells &s.increments &s.n_yielded &s
+        .newton_residuals &s.newton_corrections;
     }
 
     template <class Archive>
@@ -45,7 +46,7 @@ namespace bsmpm
 
     /** First line of every archive: what it is and in which format. */
     const std::string  magic   = "bsmpm checkpoint";
-    const unsigned int version = 1;
+    const unsigned int version = 2;
 
     /** What both archives start with, checked before anything else is
      * read. */
@@ -111,14 +112,18 @@ namespace bsmpm
                              "(format " +
                              std::to_string(header.format) + ", expected " +
                              std::to_string(version) + ")."));
-      AssertThrow(header.n_properties == MaterialPoints::Property::n_properties,
-                  ExcMessage(
-                    "Checkpoint '" + directory + "': its points carry " +
-                    std::to_string(header.n_properties) +
-                    " properties each, this bsmpm " +
-                    std::to_string(MaterialPoints::Property::n_properties) +
-                    ": it was written by another version and cannot be "
-                    "resumed by this one."));
+      AssertThrow(
+        header.n_properties == MaterialPoints::Property::n_properties ||
+          header.n_properties ==
+            MaterialPoints::Property::n_properties_inelastic,
+        ExcMessage(
+          "Checkpoint '" + directory + "': its points carry " +
+          std::to_string(header.n_properties) +
+          " properties each, this bsmpm " +
+          std::to_string(MaterialPoints::Property::n_properties) + " or " +
+          std::to_string(MaterialPoints::Property::n_properties_inelastic) +
+          ": it was written by another version and cannot be "
+          "resumed by this one."));
       return header;
     }
   } // namespace
@@ -346,7 +351,12 @@ namespace bsmpm
     boost::archive::binary_iarchive archive(in);
     const Header header = read_header(archive, resume_directory);
     AssertThrow(header.n_properties == handler.n_properties_per_particle(),
-                ExcInternalError());
+                ExcMessage("Checkpoint '" + resume_directory +
+                           "': its points carry " +
+                           std::to_string(header.n_properties) +
+                           " properties, the scene's constitutive model " +
+                           std::to_string(handler.n_properties_per_particle()) +
+                           ": the parameters were changed."));
     archive >> handler;
     handler.deserialize();
     AssertThrow(handler.n_global_particles() == header.n_particles,

@@ -69,16 +69,26 @@ namespace bsmpm
 
 
   void
-  CutCellQuadrature::correct_cell_moments(const MaterialPoints     &points,
+  CutCellQuadrature::correct_cell_moments(MaterialPoints           &points,
                                           const BackgroundGrid     &grid,
                                           std::vector<CellMoments> &moments)
   {
     counts.clear();
     if (!is_active)
       return;
-    using Property          = MaterialPoints::Property;
-    const double cell_area  = grid.cell_size()[0] * grid.cell_size()[1];
-    const auto  &particles  = points.particle_handler();
+    using Property         = MaterialPoints::Property;
+    const double cell_area = grid.cell_size()[0] * grid.cell_size()[1];
+    auto        &particles = points.particle_handler();
+    const bool   store_weights =
+      points.n_properties() == Property::n_properties_inelastic;
+    // The points of a cell keep their volume as weight unless fitted.
+    const auto plain_weights = [&](const auto &cell) {
+      if (store_weights)
+        for (auto &particle : particles.particles_in_cell(
+               typename Triangulation<2>::active_cell_iterator(cell)))
+          particle.get_properties()[Property::weight] =
+            particle.get_properties()[Property::volume];
+    };
     unsigned int n_cut      = 0;
     unsigned int n_fitted[] = {0, 0, 0, 0, 0, 0, 0};
     unsigned int n_outside  = 0;
@@ -100,6 +110,7 @@ namespace bsmpm
             // Points the curves leave outside the body (by round-off, or
             // pushed across a support): they keep their plain quadrature.
             n_outside += (m.v > 0);
+            plain_weights(cell);
             continue;
           }
         const bool full = fill == CutCellGeometry::Fill::full;
@@ -132,6 +143,7 @@ namespace bsmpm
             m.stress   = plain.stress;
             m.stress_s = plain.stress_s;
             m.stress_t = plain.stress_t;
+            plain_weights(cell);
             continue;
           }
         n_full_fit += full;
@@ -163,6 +175,17 @@ namespace bsmpm
         const auto fit = MomentFitting::fit(st, volume, target, full ? 3 : 6);
         if (!full)
           ++n_fitted[fit.n_moments];
+        if (store_weights)
+          {
+            unsigned int p = 0;
+            for (auto &particle : particles.particles_in_cell(
+                   typename Triangulation<2>::active_cell_iterator(cell)))
+              {
+                auto props = particle.get_properties();
+                props[Property::weight] =
+                  props[Property::volume] == 0. ? 0. : fit.weights[p++];
+              }
+          }
         double sum_w = 0, sum_ws = 0, sum_wt = 0;
         for (unsigned int p = 0; p < st.size(); ++p)
           {

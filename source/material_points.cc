@@ -23,8 +23,11 @@ namespace bsmpm
 
 
 
-  MaterialPoints::MaterialPoints(const BackgroundGrid &grid)
+  MaterialPoints::MaterialPoints(const BackgroundGrid &grid,
+                                 const bool            inelastic_state)
     : grid(grid)
+    , n_point_properties(inelastic_state ? Property::n_properties_inelastic :
+                                           Property::n_properties)
   {}
 
 
@@ -45,7 +48,7 @@ namespace bsmpm
     if (cell == grid.dof_handler().end())
       return false;
 
-    std::array<double, Property::n_properties> properties{};
+    std::array<double, Property::n_properties_inelastic> properties{};
     properties[Property::volume]               = volume;
     properties[Property::d_function]           = 1.;
     properties[Property::initial_position]     = position[0];
@@ -55,7 +58,7 @@ namespace bsmpm
                               id,
                               cell,
                               ArrayView<const double>(properties.data(),
-                                                      properties.size()));
+                                                      n_point_properties));
     return true;
   }
 
@@ -69,7 +72,7 @@ namespace bsmpm
   {
     particles.initialize(grid.triangulation(),
                          grid.mapping(),
-                         Property::n_properties);
+                         n_point_properties);
     // Each process creates the points of its own cells, with the index of
     // the layout's enumeration as id: unique and partition-independent.
     next_id = layout.n_candidates(grid);
@@ -157,7 +160,8 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     const std::vector<bool>                          *support_cells,
     const SupportFunction                            &support,
-    const std::vector<double>                        *cell_quality)
+    const std::vector<double>                        *cell_quality,
+    const bool                                        update_stress)
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
@@ -183,14 +187,17 @@ namespace bsmpm
         const auto e = kernel.strain_coefficients(total);
         const bool near_support =
           support_cells && (*support_cells)[cell->active_cell_index()];
+        const bool has_material = holds_material(cell);
 
         for (auto &particle : particles.particles_in_cell(cell))
           {
             const Point<2> st = particle.get_reference_location();
-            const Voigt    de = e[0] + st[0] * e[1] + st[1] * e[2];
-            const Voigt    ds = C * de;
-            auto           du = kernel.displacement(d, st);
-            double         D  = 1;
+            Voigt          de = e[0] + st[0] * e[1] + st[1] * e[2];
+            if (!has_material)
+              de = boundary_strain(kernel, cell, st, increment, prescribed);
+            const Voigt ds = C * de;
+            auto        du = kernel.displacement(d, st);
+            double      D  = 1;
             if (near_support)
               D = support(
                 particle.get_location(),
@@ -206,7 +213,8 @@ namespace bsmpm
             props[Property::d_function] = D;
             for (unsigned int r = 0; r < 3; ++r)
               {
-                props[Property::stress + r] += ds[r];
+                if (update_stress)
+                  props[Property::stress + r] += ds[r];
                 // Stored strain is the tensor component: eps_xy = gamma/2.
                 props[Property::strain + r] += (r == 2 ? de[r] / 2 : de[r]);
               }
@@ -431,20 +439,91 @@ namespace bsmpm
 
 
 
-  std::vector<std::string>
-  MaterialPoints::property_names()
+  bool
+  MaterialPoints::holds_material(
+    const DoFHandler<2>::active_cell_iterator &cell) const
   {
-    return {"volume",
-            "stress_xx",
-            "stress_yy",
-            "stress_xy",
-            "strain_xx",
-            "strain_yy",
-            "strain_xy",
-            "displacement",
-            "displacement",
-            "initial_position",
-            "initial_position",
-            "d_function"};
+    for (const auto &particle : particles.particles_in_cell(cell))
+      if (particle.get_properties()[Property::volume] > 0)
+        return true;
+    return false;
+  }
+
+
+
+  Voigt
+  MaterialPoints::boundary_strain(
+    const Q1CellKernel                               &kernel,
+    const DoFHandler<2>::active_cell_iterator        &cell,
+    const Point<2>                                   &st,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  {
+    // A zero-volume point in a cell without material: a boundary point on a
+    // grid line is sorted into the cell above or to the right of it, and a
+    // boundary that has just crossed into a cell leaves only a sliver of
+    // body there, whose outer vertices hold nothing. The strain of the body
+    // is that of the nearest neighbour across a face that holds material,
+    // its affine field extended to the point. Faces are numbered left,
+    // right, bottom, top.
+    const std::array<double, 4> distance = {
+      {st[0], 1 - st[0], st[1], 1 - st[1]}};
+    std::array<unsigned int, 4> faces = {{0, 1, 2, 3}};
+    std::sort(faces.begin(), faces.end(), [&](unsigned int a, unsigned int b) {
+      return distance[a] < distance[b];
+    });
+    auto     source = cell;
+    Point<2> where  = st;
+    for (const unsigned int face : faces)
+      {
+        if (cell->at_boundary(face) || cell->neighbor(face)->is_artificial())
+          continue;
+        const auto neighbour = cell->neighbor(face);
+        // A ghost neighbour's points are unknown here: trust the nearest.
+        if (neighbour->is_locally_owned() && !holds_material(neighbour))
+          continue;
+        source = neighbour;
+        where[face / 2] += (face % 2 == 0) ? 1. : -1.;
+        break;
+      }
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    source->get_dof_indices(dof_indices);
+    Q1CellKernel::LocalVector d;
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      d[i] = increment(dof_indices[i]) +
+             (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
+    const auto e = kernel.strain_coefficients(d);
+    return e[0] + where[0] * e[1] + where[1] * e[2];
+  }
+
+
+
+  std::vector<std::string>
+  MaterialPoints::property_names(const unsigned int n_properties)
+  {
+    std::vector<std::string> names{"volume",
+                                   "stress_xx",
+                                   "stress_yy",
+                                   "stress_xy",
+                                   "strain_xx",
+                                   "strain_yy",
+                                   "strain_xy",
+                                   "displacement",
+                                   "displacement",
+                                   "initial_position",
+                                   "initial_position",
+                                   "d_function"};
+    if (n_properties == Property::n_properties_inelastic)
+      for (const char *name : {"elastic_strain_xx",
+                               "elastic_strain_yy",
+                               "elastic_strain_zz",
+                               "elastic_strain_xy",
+                               "equivalent_plastic_strain",
+                               "stress_zz",
+                               "yielded",
+                               "quadrature_weight"})
+        names.emplace_back(name);
+    return names;
   }
 } // namespace bsmpm

@@ -72,7 +72,20 @@ namespace bsmpm
             << ", \"iterations\": " << s.iterations
             << ", \"refinement_steps\": " << s.refinement_steps
             << ", \"relative_residual\": " << json_number(s.relative_residual)
-            << ", \"active_cells\": " << s.n_active_cells << "}";
+            << ", \"active_cells\": " << s.n_active_cells;
+        if (nonlinear)
+          {
+            out << ", \"increments\": " << s.increments
+                << ", \"yielded_points\": " << s.n_yielded
+                << ", \"newton_residuals\": [";
+            for (unsigned int k = 0; k < s.newton_residuals.size(); ++k)
+              out << (k ? ", " : "") << json_number(s.newton_residuals[k]);
+            out << "], \"newton_corrections\": [";
+            for (unsigned int k = 0; k < s.newton_corrections.size(); ++k)
+              out << (k ? ", " : "") << json_number(s.newton_corrections[k]);
+            out << "]";
+          }
+        out << "}";
       }
     out << (steps.empty() ? "],\n" : "\n  ],\n");
     write_map(out, "errors", errors);
@@ -102,7 +115,8 @@ namespace bsmpm
   {
     if (s.number == 1)
       out << "\n step  load factor  active cells  solver              "
-             "iterations  residual\n";
+             "iterations  residual"
+          << (nonlinear ? "  newton  yielded  |R_k|/|R_0|" : "") << '\n';
     std::ostringstream line;
     line << std::setw(5) << s.number << "  " << std::setw(11) << std::fixed
          << std::setprecision(6) << s.load_factor << "  " << std::setw(12)
@@ -110,7 +124,18 @@ namespace bsmpm
          << std::right << "  " << std::setw(10)
          << (s.iterations > 0 ? std::to_string(s.iterations) : "-") << "  "
          << std::scientific << std::setprecision(1)
-         << (s.relative_residual < 1e-12 ? 0. : s.relative_residual) << '\n';
+         << (s.relative_residual < 1e-12 ? 0. : s.relative_residual);
+    if (nonlinear)
+      {
+        line << "  " << std::setw(6) << s.newton_residuals.size() - s.increments
+             << "  " << std::setw(7) << s.n_yielded << " ";
+        if (s.increments > 1)
+          line << " (" << s.increments << " increments)";
+        else
+          for (const double r : s.newton_residuals)
+            line << ' ' << std::setprecision(1) << r;
+      }
+    line << '\n';
     out << line.str();
   }
 

@@ -15,6 +15,7 @@
 #include <bsmpm/parameter_tools.h>
 #include <bsmpm/scene.h>
 
+#include <iomanip>
 #include <sstream>
 
 namespace bsmpm
@@ -56,6 +57,17 @@ namespace bsmpm
                       "load steps like every other load.");
     prm.leave_subsection();
 
+    prm.enter_subsection("Reactions");
+    prm.declare_entry("Curves",
+                      "",
+                      Patterns::List(Patterns::Integer(1)),
+                      "Boundary curves (by number) whose supports' force on "
+                      "the body is reported after every load step as "
+                      "quantities curve<k>_force_x and _y (SupportReaction: "
+                      "the work of the stresses on a field that is one on "
+                      "the grid vertices of the cells the supports cross).");
+    prm.leave_subsection();
+
     prm.enter_subsection("Probe");
     prm.declare_entry("Point",
                       "",
@@ -72,6 +84,18 @@ namespace bsmpm
 
     BackgroundGrid::declare_parameters(prm);
     LinearElasticMaterial::declare_parameters(prm);
+    prm.enter_subsection("Material");
+    prm.declare_entry(
+      "Volumetric strain",
+      "B-bar",
+      Patterns::Selection("B-bar|standard"),
+      "Nonlinear constitutive models: B-bar replaces the volumetric strain "
+      "of every point by the mean over the points of its cell, so that "
+      "isochoric plastic flow does not lock the bilinear grid; standard "
+      "keeps the points' own (a model that stays elastic then gives the "
+      "linear code's results, up to the cut cells' quadrature). Linear "
+      "elasticity always uses the standard strain.");
+    prm.leave_subsection();
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
     BoundaryCurves::declare_parameters(prm);
@@ -81,6 +105,7 @@ namespace bsmpm
     GhostPenalty::declare_parameters(prm);
     CutCellQuadrature::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
+    NewtonSolver::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
     Checkpoint::declare_parameters(prm);
@@ -98,6 +123,12 @@ namespace bsmpm
     gravity      = ParameterTools::get_point(prm, "Gravity");
     prm.leave_subsection();
 
+    prm.enter_subsection("Reactions");
+    reaction_curves.clear();
+    for (const auto &k : Utilities::split_string_list(prm.get("Curves")))
+      reaction_curves.push_back(Utilities::string_to_int(k) - 1);
+    prm.leave_subsection();
+
     prm.enter_subsection("Probe");
     has_probe = !Utilities::trim(prm.get("Point")).empty();
     if (has_probe)
@@ -107,6 +138,16 @@ namespace bsmpm
 
     grid.parse_parameters(prm);
     material.parse_parameters(prm);
+    constitutive_model = create_constitutive_model(prm);
+    prm.enter_subsection("Material");
+    const bool b_bar = prm.get("Volumetric strain") == "B-bar";
+    prm.leave_subsection();
+    if (!constitutive_model->is_linear())
+      constitutive_update =
+        std::make_unique<ConstitutiveUpdate>(*constitutive_model, b_bar);
+    points.store_inelastic_state(constitutive_update != nullptr);
+    run_summary.nonlinear = constitutive_update != nullptr;
+    newton.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
     boundary_curves.parse_parameters(prm);
@@ -185,6 +226,12 @@ namespace bsmpm
                               gravity},
         timer);
       assembly->setup();
+      if (constitutive_update)
+        {
+          assembly->leave_material_to_points(true);
+          constitutive_update->use_quadrature_weights(
+            cut_cell_quadrature.active());
+        }
       increment.reinit(grid.locally_owned_dofs(),
                        grid.locally_relevant_dofs(),
                        communicator);
@@ -285,14 +332,7 @@ namespace bsmpm
   Scene::solve(const unsigned int step)
   {
     TimerOutput::Scope t(timer, "solve");
-    // A load that is not finite (an expression dividing by zero, a density
-    // or gravity of inf): say so before the solver turns it into NaN
-    // displacements.
-    AssertThrow(std::isfinite(assembly->rhs().l2_norm()),
-                ExcMessage("The loads of load step " + std::to_string(step) +
-                           " are not finite (NaN or inf): check the "
-                           "tractions, prescribed displacements, density and "
-                           "gravity of the scene."));
+    check_loads_finite(step);
     TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
                                            communicator);
     const auto report = linear_solver.solve(assembly->matrix(),
@@ -313,6 +353,21 @@ namespace bsmpm
       increment(i) = solution(i);
     increment.update_ghost_values();
     return report;
+  }
+
+
+
+  void
+  Scene::check_loads_finite(const unsigned int step) const
+  {
+    // A load that is not finite (an expression dividing by zero, a density
+    // or gravity of inf): say so before the solver turns it into NaN
+    // displacements.
+    AssertThrow(std::isfinite(assembly->rhs().l2_norm()),
+                ExcMessage("The loads of load step " + std::to_string(step) +
+                           " are not finite (NaN or inf): check the "
+                           "tractions, prescribed displacements, density and "
+                           "gravity of the scene."));
   }
 
 
@@ -344,7 +399,8 @@ namespace bsmpm
         return implicit_boundary.support_displacement(
           boundary_curves, grid, x, field, w);
       },
-      &cell_quality);
+      &cell_quality,
+      /*update_stress=*/constitutive_update == nullptr);
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
@@ -453,7 +509,7 @@ namespace bsmpm
 
     Particles::DataOut<2> points_out;
     std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(MaterialPoints::Property::n_properties,
+      interpretation(points.n_properties(),
                      DataComponentInterpretation::component_is_scalar);
     for (const unsigned int vector_start :
          {MaterialPoints::Property::displacement,
@@ -461,7 +517,8 @@ namespace bsmpm
       interpretation[vector_start] = interpretation[vector_start + 1] =
         DataComponentInterpretation::component_is_part_of_vector;
     points_out.build_patches(points.particle_handler(),
-                             MaterialPoints::property_names(),
+                             MaterialPoints::property_names(
+                               points.n_properties()),
                              interpretation);
     output.write_series("points", step, load_factor, points_out);
 
@@ -540,39 +597,14 @@ namespace bsmpm
     if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 
+    points_moved = first_step > 1;
     for (unsigned int step = first_step; step <= n_load_steps; ++step)
       {
-        const double load_factor = double(step) / n_load_steps;
-        if (step > 1)
-          {
-            TimerOutput::Scope t(timer, "sort points");
-            points.sort_into_cells();
-          }
-        compute_cell_moments();
-        assembly->make_constraints(cell_moments);
-        has_prescribed =
-          implicit_boundary.fits_prescribed_displacement(boundary_curves);
-        if (has_prescribed)
-          fit_prescribed_displacement(1. / n_load_steps);
-        cell_quality = support_qualities();
-        assembly->assemble(load_factor,
-                           1. / n_load_steps,
-                           cell_moments,
-                           cell_quality,
-                           has_prescribed ? &prescribed : nullptr);
-        if (linear_solver.estimates_condition() &&
-            assembly->rhs().l2_norm() > 0)
-          {
-            TimerOutput::Scope t(timer, "condition estimate");
-            const double       estimate =
-              linear_solver.estimate_condition_number(assembly->matrix(),
-                                                      assembly->rhs());
-            double &largest = run_summary.quantities["condition_estimate"];
-            largest         = std::max(largest, estimate);
-          }
-        const auto solver_report = solve(step);
-        move_points(step);
-        update_curves();
+        const double     load_factor = double(step) / n_load_steps;
+        RunSummary::Step record;
+        record.number      = step;
+        record.load_factor = load_factor;
+        advance(step, double(step - 1) / n_load_steps, load_factor, record);
         if (has_probe)
           {
             std::vector<Point<2>> positions;
@@ -582,6 +614,30 @@ namespace bsmpm
             run_summary.quantities[probe_name + "_displacement_x"] = u[0];
             run_summary.quantities[probe_name + "_displacement_y"] = u[1];
             run_summary.quantities[probe_name + "_deflection"]     = -u[1];
+            const Voigt &sigma = stresses[probe_slot];
+            run_summary.quantities[probe_name + "_stress_xx"] = sigma[0];
+            run_summary.quantities[probe_name + "_stress_yy"] = sigma[1];
+            run_summary.quantities[probe_name + "_stress_xy"] = sigma[2];
+          }
+        if (!reaction_curves.empty())
+          {
+            TimerOutput::Scope t(timer, "reactions");
+            const auto         forces =
+              SupportReaction::compute(boundary_curves,
+                                       grid,
+                                       points,
+                                       assembly->kernel(),
+                                       load_factor * material.density() *
+                                         gravity);
+            for (const unsigned int c : reaction_curves)
+              {
+                AssertThrow(c < forces.size(),
+                            ExcMessage("Reactions/Curves: there is no curve " +
+                                       std::to_string(c + 1) + "."));
+                const std::string name = "curve" + std::to_string(c + 1);
+                run_summary.quantities[name + "_force_x"] = forces[c][0];
+                run_summary.quantities[name + "_force_y"] = forces[c][1];
+              }
           }
         if (boundary_curves.has_loads())
           {
@@ -590,14 +646,8 @@ namespace bsmpm
             run_summary.quantities["traction_resultant_y"] = force[1];
           }
 
-        RunSummary::Step record;
-        record.number            = step;
-        record.load_factor       = load_factor;
-        record.solver            = solver_report.method;
-        record.iterations        = solver_report.iterations;
-        record.refinement_steps  = solver_report.refinement_steps;
-        record.relative_residual = solver_report.relative_residual;
-        record.n_active_cells    = assembly->n_active_cells();
+        if (constitutive_update)
+          run_summary.quantities["yielded_points"] = record.n_yielded;
         run_summary.steps.push_back(record);
         if (pcout.is_active())
           run_summary.print_step(pcout.get_stream(), record);
@@ -611,6 +661,173 @@ namespace bsmpm
     if (exact_solution)
       evaluate_errors();
     finish();
+  }
+
+
+
+  void
+  Scene::advance(const unsigned int step,
+                 const double       from,
+                 const double       to,
+                 RunSummary::Step  &record)
+  {
+    double       lambda = from;
+    double       delta  = to - from;
+    unsigned int cuts   = 0;
+    record.increments   = 0;
+    while (lambda < to - 1e-12 * (to - from))
+      {
+        delta = std::min(delta, to - lambda);
+        if (points_moved)
+          {
+            TimerOutput::Scope t(timer, "sort points");
+            points.sort_into_cells();
+            points_moved = false;
+          }
+        compute_cell_moments();
+        assembly->make_constraints(cell_moments);
+        has_prescribed =
+          implicit_boundary.fits_prescribed_displacement(boundary_curves);
+        if (has_prescribed)
+          fit_prescribed_displacement(delta);
+        cell_quality = support_qualities();
+        assembly->assemble(lambda + delta,
+                           delta,
+                           cell_moments,
+                           cell_quality,
+                           has_prescribed ? &prescribed : nullptr);
+        if (linear_solver.estimates_condition() &&
+            assembly->rhs().l2_norm() > 0)
+          {
+            TimerOutput::Scope t(timer, "condition estimate");
+            const double       estimate =
+              linear_solver.estimate_condition_number(assembly->matrix(),
+                                                      assembly->rhs());
+            double &largest = run_summary.quantities["condition_estimate"];
+            largest         = std::max(largest, estimate);
+          }
+        if (constitutive_update)
+          {
+            check_loads_finite(step);
+            const auto result = solve_nonlinear(delta, record);
+            if (!result.converged)
+              {
+                if (pcout.is_active())
+                  {
+                    std::ostringstream line;
+                    line << "       load " << lambda << " + " << delta << ": "
+                         << result.failure << ", |R_k|/|R_0|" << std::scientific
+                         << std::setprecision(1);
+                    for (const auto &iteration : result.iterations)
+                      line << ' ' << iteration.relative_residual;
+                    pcout << line.str() << '\n';
+                  }
+                AssertThrow(
+                  cuts < newton.max_step_cuts(),
+                  ExcMessage(
+                    "Load step " + std::to_string(step) +
+                    ": the Newton iterations failed (" + result.failure +
+                    ") although the load increment was halved " +
+                    std::to_string(cuts) + " times, to " +
+                    std::to_string(delta) +
+                    " of the load: the body may have reached its limit "
+                    "load, or the increment needs more cuts (Nonlinear "
+                    "solver/Maximum step cuts). The output of the previous "
+                    "step is intact."));
+                ++cuts;
+                delta /= 2;
+                continue;
+              }
+            TimerOutput::Scope t(timer, "update points");
+            previous_increment = increment;
+            previous_delta     = delta;
+            record.n_yielded =
+              constitutive_update->commit(points,
+                                          grid,
+                                          assembly->kernel(),
+                                          increment,
+                                          has_prescribed ? &prescribed :
+                                                           nullptr);
+          }
+        else
+          {
+            const auto report        = solve(step);
+            record.solver            = report.method;
+            record.iterations        = report.iterations;
+            record.refinement_steps  = report.refinement_steps;
+            record.relative_residual = report.relative_residual;
+          }
+        record.n_active_cells = assembly->n_active_cells();
+        move_points(step);
+        points_moved = true;
+        update_curves();
+        lambda += delta;
+        ++record.increments;
+      }
+  }
+
+
+
+  NewtonSolver::Result
+  Scene::solve_nonlinear(const double delta, RunSummary::Step &record)
+  {
+    TrilinosWrappers::MPI::Vector last_correction;
+    // Start from the last converged increment scaled to this one: points
+    // that yielded then are evaluated on the plastic branch from the first
+    // iteration, where a start from zero would see them on the yield surface
+    // with the elastic tangent and overshoot.
+    increment        = 0;
+    const auto  *d_a = has_prescribed ? &prescribed : nullptr;
+    const double reference =
+      assembly->newton_system(*constitutive_update, points, increment, d_a);
+    if (previous_delta > 0 && previous_increment.size() == increment.size())
+      {
+        increment.add(delta / previous_delta, previous_increment);
+        assembly->constraints().set_zero(increment);
+        increment.update_ghost_values();
+      }
+    record.iterations = 0;
+    const auto result = newton.solve(
+      reference,
+      [&]() {
+        return assembly->newton_system(*constitutive_update,
+                                       points,
+                                       increment,
+                                       d_a);
+      },
+      [&]() {
+        TimerOutput::Scope            t(timer, "solve");
+        TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
+                                                 communicator);
+        const auto report = linear_solver.solve(assembly->tangent(),
+                                                correction,
+                                                assembly->residual(),
+                                                grid.dof_handler());
+        assembly->constraints().distribute(correction);
+        for (const auto i : grid.locally_owned_dofs())
+          increment(i) += correction(i);
+        increment.update_ghost_values();
+        record.solver = report.method;
+        record.iterations += report.iterations;
+        record.refinement_steps += report.refinement_steps;
+        record.relative_residual = report.relative_residual;
+        const double size        = increment.l2_norm();
+        last_correction          = correction;
+        return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
+                              report.iterations);
+      },
+      [&](const double alpha) {
+        // From x + a dx (a the previous length, 2 alpha) to x + alpha dx.
+        for (const auto i : grid.locally_owned_dofs())
+          increment(i) -= alpha * last_correction(i);
+        increment.update_ghost_values();
+      });
+    for (const auto &iteration : result.iterations)
+      {
+        record.newton_residuals.push_back(iteration.relative_residual);
+        record.newton_corrections.push_back(iteration.relative_correction);
+      }
+    return result;
   }
 
 

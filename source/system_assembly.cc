@@ -197,8 +197,11 @@ namespace bsmpm
         cell_matrix = 0;
         cell_rhs    = 0;
         internal    = 0;
-        kernel.add_stiffness(m, cell_matrix);
-        kernel.add_internal_force(m, internal);
+        if (!material_from_points)
+          {
+            kernel.add_stiffness(m, cell_matrix);
+            kernel.add_internal_force(m, internal);
+          }
         if (has_body_force)
           kernel.add_body_force(m, body_force, cell_rhs);
         cell_rhs -= internal;
@@ -206,7 +209,7 @@ namespace bsmpm
         cell->get_dof_indices(dof_indices);
         // Material-point part of the force f^d of a prescribed displacement
         // (eq. 33): the regular stiffness times d^a.
-        if (prescribed)
+        if (prescribed && !material_from_points)
           {
             for (unsigned int i = 0; i < n; ++i)
               da[i] = (*prescribed)(dof_indices[i]);
@@ -275,5 +278,42 @@ namespace bsmpm
       }
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
+  }
+
+
+
+  double
+  SystemAssembly::newton_system(
+    const ConstitutiveUpdate                         &update,
+    const MaterialPoints                             &points,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    TimerOutput::Scope    t(timer, "newton system");
+    const BackgroundGrid &grid = parts.grid;
+    tangent_matrix.copy_from(system_matrix);
+    TrilinosWrappers::MPI::Vector x(grid.locally_owned_dofs(),
+                                    grid.mpi_communicator());
+    for (const auto i : grid.locally_owned_dofs())
+      x(i) = increment(i);
+    x.compress(VectorOperation::insert);
+    newton_residual.reinit(x, true);
+    system_matrix.vmult(newton_residual, x);
+    newton_residual.sadd(-1., 1., system_rhs);
+    TrilinosWrappers::MPI::Vector internal_force(newton_residual);
+    internal_force = 0;
+    yielding       = update.assemble(points,
+                               grid,
+                               *cell_kernel,
+                               increment,
+                               prescribed,
+                               system_constraints,
+                               tangent_matrix,
+                               internal_force);
+    tangent_matrix.compress(VectorOperation::add);
+    internal_force.compress(VectorOperation::add);
+    newton_residual -= internal_force;
+    yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
+    return newton_residual.l2_norm();
   }
 } // namespace bsmpm

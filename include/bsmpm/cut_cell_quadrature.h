@@ -85,9 +85,12 @@ namespace bsmpm
     /**
      * Replaces the moments (from MaterialPoints::compute_cell_moments()) of
      * the locally owned cut cells in @p moments by the consistent ones.
+     * Points that store an inelastic state (a nonlinear constitutive model
+     * integrates with them point by point) receive their quadrature weight,
+     * MaterialPoints::Property::weight: the fitted one, or their volume.
      */
     void
-    correct_cell_moments(const MaterialPoints     &points,
+    correct_cell_moments(MaterialPoints           &points,
                          const BackgroundGrid     &grid,
                          std::vector<CellMoments> &moments);
 

@@ -42,6 +42,16 @@ namespace bsmpm
        * from supports). */
       static constexpr unsigned int d_function   = 11;
       static constexpr unsigned int n_properties = 12;
+      /** The state of a nonlinear constitutive model, stored only when the
+       * scene's model needs it (n_properties_inelastic properties). */
+      static constexpr unsigned int elastic_strain = 12; ///< xx, yy, zz, xy
+      static constexpr unsigned int plastic_strain = 16; ///< equivalent
+      static constexpr unsigned int stress_zz      = 17;
+      static constexpr unsigned int yielded        = 18; ///< 1 if plastic
+      /** Quadrature weight of the point in this step (its volume, or the
+       * moment-fitted weight in a cut cell, CutCellQuadrature). */
+      static constexpr unsigned int weight                 = 19;
+      static constexpr unsigned int n_properties_inelastic = 20;
     };
 
     /** Result of moving the points by one increment. */
@@ -64,7 +74,26 @@ namespace bsmpm
       double example_quality = -1;
     };
 
-    explicit MaterialPoints(const BackgroundGrid &grid);
+    /** With @p inelastic_state, every point also stores the state of a
+     * nonlinear constitutive model (Property::elastic_strain and after). */
+    explicit MaterialPoints(const BackgroundGrid &grid,
+                            const bool            inelastic_state = false);
+
+    /** Whether the points store the state of a nonlinear constitutive
+     * model; to be set before generate(). */
+    void
+    store_inelastic_state(const bool inelastic_state)
+    {
+      n_point_properties = inelastic_state ? Property::n_properties_inelastic :
+                                             Property::n_properties;
+    }
+
+    /** Number of properties per point. */
+    unsigned int
+    n_properties() const
+    {
+      return n_point_properties;
+    }
 
     /**
      * Creates the material points of @p layout in @p region, except those
@@ -130,7 +159,9 @@ namespace bsmpm
      * In the cells flagged in @p support_cells (by active_cell_index),
      * @p support modifies w. @p cell_quality (by active_cell_index, if
      * given) is reported for a point that leaves the grid. The points are not
-     * re-sorted into cells; see sort_into_cells().
+     * re-sorted into cells; see sort_into_cells(). Without
+     * @p update_stress the stress is left alone (a nonlinear model has
+     * stored it already, ConstitutiveUpdate::commit()).
      */
     MoveReport
     move(const Q1CellKernel                               &kernel,
@@ -139,7 +170,8 @@ namespace bsmpm
          const LinearAlgebra::distributed::Vector<double> *prescribed = nullptr,
          const std::vector<bool>   *support_cells                     = nullptr,
          const SupportFunction     &support                           = {},
-         const std::vector<double> *cell_quality = nullptr);
+         const std::vector<double> *cell_quality                      = nullptr,
+         const bool                 update_stress                     = true);
 
     /** Finds the cell and owner of every point after move(). */
     void
@@ -176,9 +208,31 @@ namespace bsmpm
     tracked_states(std::vector<Point<2>> &positions,
                    std::vector<Voigt>    &stresses) const;
 
+    /** Whether a point with volume lies in @p cell. */
+    bool
+    holds_material(const DoFHandler<2>::active_cell_iterator &cell) const;
+
+    /**
+     * The strain increment of the grid field @p increment (with ghost
+     * values; plus @p prescribed if given) for a zero-volume point at local
+     * coordinates @p st of @p cell, a cell without material: the strain of
+     * the nearest face neighbour that holds material, its affine field
+     * extended to the point (a boundary point on a grid line is sorted into
+     * the cell above or right of it, and a boundary that has just entered a
+     * cell leaves a sliver whose outer vertices hold nothing); @p cell's own
+     * if no neighbour does.
+     */
+    Voigt
+    boundary_strain(
+      const Q1CellKernel                               &kernel,
+      const DoFHandler<2>::active_cell_iterator        &cell,
+      const Point<2>                                   &st,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
     /** Property names and interpretations for Particles::DataOut. */
     static std::vector<std::string>
-    property_names();
+    property_names(const unsigned int n_properties = Property::n_properties);
 
   private:
     /** Inserts one point if its cell is locally owned; returns whether. */
@@ -194,6 +248,7 @@ namespace bsmpm
                       const ArrayView<const double> properties);
 
     const BackgroundGrid         &grid;
+    unsigned int                  n_point_properties;
     Particles::ParticleHandler<2> particles;
     types::particle_index         n_material_points = 0;
     types::particle_index         next_id           = 0;

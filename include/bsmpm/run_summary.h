@@ -24,14 +24,23 @@ namespace bsmpm
       unsigned int refinement_steps  = 0;
       double       relative_residual = 0;
       unsigned int n_active_cells    = 0;
+      /** Nonlinear materials: load increments the step took (more than
+       * one after cuts), points that yielded, and per Newton iteration of
+       * all its increments the relative residual and correction. */
+      unsigned int        increments = 1;
+      unsigned long long  n_yielded  = 0;
+      std::vector<double> newton_residuals;
+      std::vector<double> newton_corrections;
     };
 
-    std::string                   scene;
-    unsigned long long            n_cells           = 0;
-    unsigned long long            n_dofs            = 0;
-    unsigned long long            n_material_points = 0;
-    unsigned long long            n_tracking_points = 0;
-    unsigned int                  load_steps        = 0;
+    std::string        scene;
+    unsigned long long n_cells           = 0;
+    unsigned long long n_dofs            = 0;
+    unsigned long long n_material_points = 0;
+    unsigned long long n_tracking_points = 0;
+    unsigned int       load_steps        = 0;
+    /** Whether the steps are Newton iterations (nonlinear material). */
+    bool                          nonlinear = false;
     std::vector<Step>             steps;
     std::map<std::string, double> errors;
     std::map<std::string, double> quantities;

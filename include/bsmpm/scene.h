@@ -14,6 +14,8 @@
 #include <bsmpm/body_region.h>
 #include <bsmpm/boundary_curves.h>
 #include <bsmpm/checkpoint.h>
+#include <bsmpm/constitutive_model.h>
+#include <bsmpm/constitutive_update.h>
 #include <bsmpm/cut_cell_quadrature.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/ghost_penalty.h>
@@ -23,10 +25,12 @@
 #include <bsmpm/material_point_layout.h>
 #include <bsmpm/material_points.h>
 #include <bsmpm/neumann_loads.h>
+#include <bsmpm/newton_solver.h>
 #include <bsmpm/nitsche_boundary.h>
 #include <bsmpm/output_writer.h>
 #include <bsmpm/q1_cell_kernel.h>
 #include <bsmpm/run_summary.h>
+#include <bsmpm/support_reaction.h>
 #include <bsmpm/system_assembly.h>
 #include <bsmpm/verification.h>
 
@@ -100,6 +104,22 @@ namespace bsmpm
     LinearSolver::Report
     solve(const unsigned int step);
     void
+    check_loads_finite(const unsigned int step) const;
+    /**
+     * Takes the load from factor @p from to @p to: one increment, or more
+     * where a nonlinear material's Newton iterations fail and the
+     * increment is halved. Fills the solver figures of @p record.
+     */
+    void
+    advance(const unsigned int step,
+            const double       from,
+            const double       to,
+            RunSummary::Step  &record);
+    /** Newton iterations of a nonlinear material for the assembled load
+     * increment; the increment starts from zero. */
+    NewtonSolver::Result
+    solve_nonlinear(const double delta, RunSummary::Step &record);
+    void
     move_points(const unsigned int step);
     /** Why points left the grid, from what the step can see. */
     std::string
@@ -120,28 +140,38 @@ namespace bsmpm
     mutable TimerOutput timer;
     Timer               total_timer;
 
-    std::string                     scene_name;
-    unsigned int                    n_load_steps = 1;
-    Tensor<1, 2>                    gravity;
-    BackgroundGrid                  grid;
-    LinearElasticMaterial           material;
-    BodyRegion                      region;
-    MaterialPointLayout             layout;
-    MaterialPoints                  points;
-    BoundaryCurves                  boundary_curves;
-    NeumannLoads                    neumann_loads;
-    ImplicitBoundary                implicit_boundary;
-    NitscheBoundary                 nitsche_boundary;
-    GhostPenalty                    ghost_penalty;
-    CutCellQuadrature               cut_cell_quadrature;
-    LinearSolver                    linear_solver;
-    OutputWriter                    output;
-    Checkpoint                      checkpoint;
-    Verification                    verification;
-    std::unique_ptr<ExactSolution>  exact_solution;
-    std::unique_ptr<SystemAssembly> assembly;
+    std::string                        scene_name;
+    unsigned int                       n_load_steps = 1;
+    Tensor<1, 2>                       gravity;
+    BackgroundGrid                     grid;
+    LinearElasticMaterial              material;
+    std::unique_ptr<ConstitutiveModel> constitutive_model;
+    /** Only for a nonlinear constitutive model. */
+    std::unique_ptr<ConstitutiveUpdate> constitutive_update;
+    NewtonSolver                        newton;
+    BodyRegion                          region;
+    MaterialPointLayout                 layout;
+    MaterialPoints                      points;
+    BoundaryCurves                      boundary_curves;
+    NeumannLoads                        neumann_loads;
+    ImplicitBoundary                    implicit_boundary;
+    NitscheBoundary                     nitsche_boundary;
+    GhostPenalty                        ghost_penalty;
+    CutCellQuadrature                   cut_cell_quadrature;
+    LinearSolver                        linear_solver;
+    OutputWriter                        output;
+    Checkpoint                          checkpoint;
+    Verification                        verification;
+    std::unique_ptr<ExactSolution>      exact_solution;
+    std::unique_ptr<SystemAssembly>     assembly;
 
     LinearAlgebra::distributed::Vector<double> increment;
+    /** The last converged increment of a nonlinear material and its load
+     * increment: the start of the next Newton iterations. */
+    LinearAlgebra::distributed::Vector<double> previous_increment;
+    double                                     previous_delta = 0;
+    /** Whether points moved since they were last sorted into cells. */
+    bool points_moved = false;
     /** Nodal values d^a of the prescribed displacement increment (IBM). */
     LinearAlgebra::distributed::Vector<double> prescribed;
     bool                                       has_prescribed = false;
@@ -150,6 +180,9 @@ namespace bsmpm
     std::vector<CellMoments> cell_moments;
     /** Support quality of every locally owned cell in this step. */
     std::vector<double> cell_quality;
+
+    /** Curves (0-based) whose support forces are reported. */
+    std::vector<unsigned int> reaction_curves;
 
     /** An optional zero-volume point whose displacement is reported. */
     std::string  probe_name;

@@ -10,6 +10,7 @@
 
 #include <bsmpm/background_grid.h>
 #include <bsmpm/boundary_curves.h>
+#include <bsmpm/constitutive_update.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/ghost_penalty.h>
 #include <bsmpm/implicit_boundary.h>
@@ -89,6 +90,47 @@ namespace bsmpm
              const std::vector<double>                        &quality,
              const LinearAlgebra::distributed::Vector<double> *prescribed);
 
+    /**
+     * The Newton system of a nonlinear material at the increment
+     * @p increment (ghosted, zero at constrained DoFs) after assemble()
+     * without the material (leave_material_to_points()): tangent
+     * K_T = K + K_m and residual R = r - K x - f_int, with K and r the
+     * linear system of the boundaries, loads and stabilisation and K_m,
+     * f_int the material's, from @p update (see ConstitutiveUpdate).
+     * Returns |R|.
+     */
+    double
+    newton_system(const ConstitutiveUpdate                         &update,
+                  const MaterialPoints                             &points,
+                  const LinearAlgebra::distributed::Vector<double> &increment,
+                  const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    const TrilinosWrappers::SparseMatrix &
+    tangent() const
+    {
+      return tangent_matrix;
+    }
+    const TrilinosWrappers::MPI::Vector &
+    residual() const
+    {
+      return newton_residual;
+    }
+    /** With @p yes, assemble() leaves out the material points' stiffness
+     * and internal force: a nonlinear model adds them per iteration. */
+    void
+    leave_material_to_points(const bool yes)
+    {
+      material_from_points = yes;
+    }
+
+    /** Locally owned points with volume that yield at the last
+     * newton_system(), over all processes. */
+    unsigned long long
+    n_yielding() const
+    {
+      return yielding;
+    }
+
     const AffineConstraints<double> &
     constraints() const
     {
@@ -130,6 +172,10 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
     TrilinosWrappers::SparseMatrix boundary_fit_matrix;
+    TrilinosWrappers::SparseMatrix tangent_matrix;
+    TrilinosWrappers::MPI::Vector  newton_residual;
+    unsigned long long             yielding             = 0;
+    bool                           material_from_points = false;
     /**
      * Builds the sparsity pattern and the matrix: the couplings of every
      * cell, and across the faces of the cells flagged in @p face_cells (by

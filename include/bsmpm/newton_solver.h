@@ -1,0 +1,82 @@
+#ifndef bsmpm_newton_solver_h
+#define bsmpm_newton_solver_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Newton-Raphson iterations of one load step, and the rules for cutting a
+   * step that does not converge (section "Nonlinear solver"). The problem is
+   * given as two functions, so that this class knows nothing of how the
+   * system is made (doc/newton.md):
+   *
+   * - residual(): assembles the tangent and the residual R at the current
+   *   increment and returns |R|;
+   * - correct(): solves K_T dx = R, adds dx to the increment and returns
+   *   (|dx| / |x|, linear iterations);
+   * - step_back(alpha): replaces the last correction dx by alpha dx.
+   *
+   * A correction that does not lower |R| is shortened by halving (a
+   * backtracking line search on |R|, at most 'Line search steps' times):
+   * where many points change between elastic and plastic within one
+   * iteration, the full Newton step can overshoot.
+   */
+  class NewtonSolver
+  {
+  public:
+    struct Iteration
+    {
+      /** |R| / |R(0)|. */
+      double relative_residual = 0;
+      /** |dx| / |x| of the correction that followed (0 for the last). */
+      double       relative_correction = 0;
+      unsigned int linear_iterations   = 0;
+    };
+
+    struct Result
+    {
+      bool                   converged = false;
+      std::vector<Iteration> iterations;
+      /** Why it did not converge. */
+      std::string failure;
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /**
+     * Iterates from the increment the caller has set. @p reference: the
+     * residual of a zero increment, |R(0)|, the scale of the tolerance (a
+     * good starting increment must not make it stricter).
+     */
+    Result
+    solve(const double                                            reference,
+          const std::function<double()>                          &residual,
+          const std::function<std::pair<double, unsigned int>()> &correct,
+          const std::function<void(const double)> &step_back) const;
+
+    /** How many times a load increment may be halved. */
+    unsigned int
+    max_step_cuts() const
+    {
+      return max_cuts;
+    }
+
+  private:
+    unsigned int max_iterations = 20;
+    double       tolerance      = 1e-9;
+    unsigned int max_cuts       = 6;
+    unsigned int line_search    = 5;
+  };
+} // namespace bsmpm
+
+#endif
