@@ -85,8 +85,16 @@ namespace bsmpm
         const auto [correction, linear_iterations] = correct();
         iteration.relative_correction              = correction;
         iteration.linear_iterations                = linear_iterations;
+        // Backtracking: halve a correction that does not lower |R|.
+        const double previous = norm;
+        norm                  = residual();
+        for (unsigned int l = 0; l < line_search && !(norm < previous); ++l)
+          {
+            iteration.step_length /= 2;
+            step_back(iteration.step_length);
+            norm = residual();
+          }
         result.iterations.push_back(iteration);
-        norm = residual();
       }
   }
 } // namespace bsmpm

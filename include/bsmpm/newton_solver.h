@@ -38,6 +38,9 @@ namespace bsmpm
       /** |dx| / |x| of the correction that followed (0 for the last). */
       double       relative_correction = 0;
       unsigned int linear_iterations   = 0;
+      /** Length of the correction taken (1 unless the line search
+       * shortened it). */
+      double step_length = 1;
     };
 
     struct Result
