@@ -90,6 +90,12 @@ def compare(a, b, path=""):
         if a is None or b is None:
             return [] if a is b else [f"{path}: {a} against {b}"]
         scale = max(abs(a), abs(b), 1e-300)
+        # A solver's relative residual is round-off: the sparsity pattern
+        # (ghost-penalty couplings) depends on the steps a run has been
+        # through, so a resumed run's direct solver may order its
+        # operations differently. Both at round-off is agreement.
+        if path.endswith("relative_residual") and scale <= 1e-9:
+            return []
         return ([] if abs(a - b) <= args.tolerance * scale else
                 [f"{path}: {a!r} against {b!r}"])
     return [] if a == b else [f"{path}: {a!r} against {b!r}"]
