@@ -1,4 +1,5 @@
 #include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
 
 #include <deal.II/dofs/dof_tools.h>
 
@@ -185,12 +186,25 @@ namespace bsmpm
     DoFTools::extract_locally_relevant_dofs(dofs, relevant_dofs);
 
     owned_cell_lookup.assign(std::size_t(cells[0]) * cells[1], dofs.end());
+    // Owners of all cells: each process enters its own, the maximum over
+    // the processes fills the table (4 bytes per cell).
+    cell_owners.assign(std::size_t(cells[0]) * cells[1], 0);
+    owned_positions.assign(std::size_t(cells[0]) * cells[1],
+                           numbers::invalid_unsigned_int);
+    owned_cells.clear();
+    const types::subdomain_id rank =
+      Utilities::MPI::this_mpi_process(communicator);
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           const auto ij                               = cell_index(cell);
           owned_cell_lookup[ij[1] * cells[0] + ij[0]] = cell;
+          cell_owners[ij[1] * cells[0] + ij[0]]       = rank;
+          owned_positions[ij[1] * cells[0] + ij[0]]   = owned_cells.size();
+          owned_cells.emplace_back(cell, ij);
         }
+    if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+      Utilities::MPI::max(cell_owners, communicator, cell_owners);
   }
 
 
@@ -200,22 +214,6 @@ namespace bsmpm
   {
     return p[0] >= corner_lower[0] && p[0] <= corner_upper[0] &&
            p[1] >= corner_lower[1] && p[1] <= corner_upper[1];
-  }
-
-
-
-  std::array<unsigned int, 2>
-  BackgroundGrid::cell_index(const Point<2> &p) const
-  {
-    Assert(contains(p), ExcMessage("Point outside the grid."));
-    std::array<unsigned int, 2> ij;
-    for (unsigned int d = 0; d < 2; ++d)
-      {
-        const double x = std::floor((p[d] - corner_lower[d]) / h[d]);
-        ij[d]          = static_cast<unsigned int>(
-          std::min(std::max(x, 0.), double(cells[d] - 1)));
-      }
-    return ij;
   }
 
 

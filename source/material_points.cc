@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <bsmpm/material_points.h>
+#include <bsmpm/point_sorting.h>
 
 #include <algorithm>
 #include <cmath>
@@ -294,7 +295,9 @@ namespace bsmpm
   MaterialPoints::sort_into_cells()
   {
     const auto before = particles.n_global_particles();
-    particles.sort_particles_into_subdomains_and_cells();
+    // By arithmetic on the uniform grid, not deal.II's search
+    // (sort_particles_into_subdomains_and_cells): doc/benchmarks.md.
+    bsmpm::sort_into_cells(particles, grid);
     AssertThrow(particles.n_global_particles() == before,
                 ExcMessage(
                   "Material points were lost while sorting them into "

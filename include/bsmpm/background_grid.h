@@ -14,6 +14,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -131,7 +132,20 @@ namespace bsmpm
      * except on the upper and right edges of the grid.
      */
     std::array<unsigned int, 2>
-    cell_index(const Point<2> &p) const;
+    cell_index(const Point<2> &p) const
+    {
+      Assert(contains(p), ExcMessage("Point outside the grid."));
+      // Between the clamps the quotient is positive: truncation is floor.
+      std::array<unsigned int, 2> ij;
+      for (unsigned int d = 0; d < 2; ++d)
+        {
+          const double x = (p[d] - corner_lower[d]) / h[d];
+          ij[d]          = !(x > 0.)     ? 0u :
+                           x >= cells[d] ? cells[d] - 1 :
+                                           static_cast<unsigned int>(x);
+        }
+      return ij;
+    }
 
     /** Local coordinates of @p p in the cell with index @p ij. */
     Point<2>
@@ -167,6 +181,33 @@ namespace bsmpm
       return owned_cell_lookup[ij[1] * cells[0] + ij[0]];
     }
 
+    /**
+     * The process that owns the cell with index @p ij (any cell of the grid,
+     * also artificial ones): a table of one entry per cell, filled when the
+     * grid is created.
+     */
+    types::subdomain_id
+    owner(const std::array<unsigned int, 2> &ij) const
+    {
+      return cell_owners[ij[1] * cells[0] + ij[0]];
+    }
+
+    /** The position of the cell with index @p ij in locally_owned_cells(),
+     * or numbers::invalid_unsigned_int if another process owns it. */
+    unsigned int
+    owned_position(const std::array<unsigned int, 2> &ij) const
+    {
+      return owned_positions[ij[1] * cells[0] + ij[0]];
+    }
+
+    /** The locally owned cells with their indices (i, j), in the order of
+     * the triangulation's active cells. */
+    const std::vector<std::pair<cell_iterator, std::array<unsigned int, 2>>> &
+    locally_owned_cells() const
+    {
+      return owned_cells;
+    }
+
     /** Adds the support conditions of the grid faces to @p constraints. */
     void
     make_face_constraints(AffineConstraints<double> &constraints) const;
@@ -189,7 +230,11 @@ namespace bsmpm
     Tensor<1, 2>                 h;
     std::array<FaceCondition, 4> face_conditions; // left, right, bottom, top
 
-    std::vector<cell_iterator> owned_cell_lookup;
+    std::vector<cell_iterator>       owned_cell_lookup;
+    std::vector<types::subdomain_id> cell_owners;
+    std::vector<unsigned int>        owned_positions;
+    std::vector<std::pair<cell_iterator, std::array<unsigned int, 2>>>
+      owned_cells;
   };
 } // namespace bsmpm
 
