@@ -8,6 +8,9 @@
 
 #include <bsmpm/linear_solver.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 
@@ -25,12 +28,28 @@ namespace bsmpm
                       "up to 'Automatic threshold' unknowns, cg amg above "
                       "(and direct if CG does not converge).");
     prm.declare_entry("Tolerance",
-                      "1e-12",
-                      Patterns::Double(1e-15),
+                      "automatic",
+                      Patterns::Anything(),
                       "cg amg: stop when the residual is below this fraction "
-                      "of the right-hand side; at least 1e-15 (below "
-                      "round-off CG would iterate on into underflow and a "
-                      "division by zero).");
+                      "of the right-hand side: a number of at least 1e-15 "
+                      "(below round-off CG would iterate on into underflow "
+                      "and a division by zero), or automatic: tied to the "
+                      "discretisation error, min(1e-8, 1.5e-3 (h/L)^2) with "
+                      "h the diameter of a cell and L that of the grid, "
+                      "which keeps the errors of the scenes within 1e-6 of "
+                      "an exact solve's (measured, doc/benchmarks.md).");
+    prm.declare_entry("Preconditioner reuse",
+                      "whole",
+                      Patterns::Selection("none|aggregates|whole"),
+                      "cg amg: what a solve takes over from the multigrid "
+                      "hierarchy of the previous one when the matrix has "
+                      "the same nonzero structure (the same active cells "
+                      "and constraints): none (a new hierarchy every "
+                      "solve), aggregates (ML's aggregates kept, the coarse "
+                      "operators and smoothers recomputed from the new "
+                      "values) or whole (the previous preconditioner as it "
+                      "is). A reused one that needs many more iterations "
+                      "than when it was new is replaced.");
     prm.declare_entry("Maximum iterations",
                       "10000",
                       Patterns::Integer(1),
@@ -70,11 +89,35 @@ namespace bsmpm
   LinearSolver::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    const std::string m  = prm.get("Method");
-    method               = m == "direct" ?
-                             Method::direct :
-                             (m == "cg amg" ? Method::cg_amg : Method::automatic);
-    tolerance            = prm.get_double("Tolerance");
+    const std::string m = prm.get("Method");
+    method              = m == "direct" ?
+                            Method::direct :
+                            (m == "cg amg" ? Method::cg_amg : Method::automatic);
+    const std::string t = Utilities::trim(prm.get("Tolerance"));
+    if (t == "automatic")
+      tolerance = 0;
+    else
+      {
+        std::size_t end = 0;
+        try
+          {
+            tolerance = std::stod(t, &end);
+          }
+        catch (const std::exception &)
+          {
+            end = 0;
+          }
+        AssertThrow(end == t.size() && end > 0 && tolerance >= 1e-15 &&
+                      std::isfinite(tolerance),
+                    ExcMessage("Linear solver/Tolerance: '" + t +
+                               "' is neither 'automatic' nor a number of at "
+                               "least 1e-15 (below round-off CG would "
+                               "iterate on into underflow)."));
+      }
+    const std::string r  = prm.get("Preconditioner reuse");
+    reuse                = r == "none" ?
+                             Reuse::none :
+                             (r == "aggregates" ? Reuse::aggregates : Reuse::whole);
     max_iterations       = prm.get_integer("Maximum iterations");
     automatic_threshold  = prm.get_integer("Automatic threshold");
     max_refinements      = prm.get_integer("Refinement steps");
@@ -199,6 +242,120 @@ namespace bsmpm
 
 
 
+  namespace
+  {
+    /** A fingerprint of the structure of the locally owned rows of
+     * @p matrix: its sparsity pattern and which rows are decoupled (no
+     * nonzero entry off the diagonal: the constrained DoFs, those of cells
+     * without material). Entries that happen to vanish in a coupled row
+     * (symmetric point layouts) do not count. FNV-1a. */
+    std::uint64_t
+    matrix_structure(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      const Epetra_CrsMatrix &A    = matrix.trilinos_matrix();
+      std::uint64_t           hash = 1469598103934665603ull;
+      const auto              mix  = [&hash](const std::uint64_t v) {
+        hash ^= v;
+        hash *= 1099511628211ull;
+      };
+      for (int row = 0; row < A.NumMyRows(); ++row)
+        {
+          int     n;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(row, n, values, columns);
+          const int diagonal = A.LCID(A.GRID(row));
+          bool      coupled  = false;
+          for (int k = 0; k < n; ++k)
+            {
+              mix(columns[k]);
+              coupled = coupled || (columns[k] != diagonal && values[k] != 0.);
+            }
+          mix(coupled ? 0xc0ull : 0xdeull);
+        }
+      return hash;
+    }
+  } // namespace
+
+
+
+  void
+  LinearSolver::prepare_preconditioner(
+    const TrilinosWrappers::SparseMatrix &matrix,
+    const DoFHandler<2>                  &dof_handler,
+    Report                               &report) const
+  {
+    // The hierarchy can serve again if it was built on this matrix object
+    // (ML keeps a pointer to it) with the same nonzero structure on every
+    // process: then only the values changed, as between load steps and
+    // Newton iterations while the same cells are active.
+    const std::uint64_t structure =
+      reuse == Reuse::none ? 0 : matrix_structure(matrix);
+    const bool same =
+      amg && reuse != Reuse::none &&
+      Utilities::MPI::min((amg_matrix == &matrix.trilinos_matrix() &&
+                           amg_structure == structure) ?
+                            1 :
+                            0,
+                          dof_handler.get_communicator()) == 1;
+    if (same)
+      {
+        if (reuse == Reuse::aggregates)
+          amg->reinit();
+        report.reused_preconditioner = true;
+        return;
+      }
+
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic              = true;
+    data.higher_order_elements = false;
+    data.smoother_sweeps       = 2;
+    data.aggregation_threshold = 0.02;
+    DoFTools::extract_constant_modes(dof_handler,
+                                     ComponentMask(2, true),
+                                     data.constant_modes);
+    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(matrix, data);
+    amg_matrix    = &matrix.trilinos_matrix();
+    amg_structure = structure;
+  }
+
+
+
+  double
+  LinearSolver::relative_tolerance(const DoFHandler<2> &dof_handler) const
+  {
+    if (tolerance > 0)
+      return tolerance;
+    // Automatic: at a fixed tolerance the errors of a scene move away from
+    // those of an exact solve about 3 times further per halving of h
+    // (measured down to h/L = 1/384, doc/benchmarks.md), at 1e-8 by at
+    // most 8e-7 of themselves there; finer grids get a tolerance that
+    // falls 4 times per halving.
+    const auto &tria = dof_handler.get_triangulation();
+    if (tria.n_global_levels() != cached_levels)
+      {
+        // A uniform grid of equal coarse cells refined globally: the
+        // diameters from the coarse cells, which every process holds.
+        cached_levels  = tria.n_global_levels();
+        Point<2> lower = tria.begin(0)->vertex(0), upper = lower;
+        for (const auto &cell : tria.cell_iterators_on_level(0))
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+                upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+              }
+        const double h =
+          tria.begin(0)->diameter() / std::pow(2., cached_levels - 1.);
+        const double ratio  = h / lower.distance(upper);
+        automatic_tolerance = std::min(1e-8, 1.5e-3 * ratio * ratio);
+      }
+    return automatic_tolerance;
+  }
+
+
+
   LinearSolver::Report
   LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                       TrilinosWrappers::MPI::Vector        &solution,
@@ -222,50 +379,91 @@ namespace bsmpm
       return solve_direct(matrix, solution, rhs);
     else
       {
-        TrilinosWrappers::PreconditionAMG::AdditionalData amg;
-        amg.elliptic              = true;
-        amg.higher_order_elements = false;
-        amg.smoother_sweeps       = 2;
-        amg.aggregation_threshold = 0.02;
-        DoFTools::extract_constant_modes(dof_handler,
-                                         ComponentMask(2, true),
-                                         amg.constant_modes);
-        TrilinosWrappers::PreconditionAMG preconditioner;
-        preconditioner.initialize(matrix, amg);
+        prepare_preconditioner(matrix, dof_handler, report);
+
+        // The previous solution is the first guess when it leaves a smaller
+        // residual than zero does (consecutive load steps of similar
+        // systems); the stopping test stays relative to ||b||.
+        solution = 0;
+        if (last_solution.size() == solution.size() &&
+            last_solution.locally_owned_elements() ==
+              solution.locally_owned_elements())
+          {
+            TrilinosWrappers::MPI::Vector residual(rhs);
+            matrix.vmult(residual, last_solution);
+            residual.sadd(-1., 1., rhs);
+            if (residual.l2_norm() < rhs_norm)
+              solution = last_solution;
+          }
 
         // In automatic mode CG gets a few hundred iterations: a system that
         // needs more (a thin IBM band holding both components in cut cells:
         // 1607 iterations on scene 4b at h = 1/32) is factorised faster.
-        SolverControl control(method == Method::automatic ?
-                                std::min(max_iterations, 300u) :
-                                max_iterations,
-                              tolerance * rhs_norm);
-        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-        try
+        const unsigned int limit  = method == Method::automatic ?
+                                      std::min(max_iterations, 300u) :
+                                      max_iterations;
+        const double       target = relative_tolerance(dof_handler) * rhs_norm;
+        // A reused hierarchy gets twice the iterations of the solve it was
+        // built for; if that is not enough, a new one continues.
+        unsigned int iterations = 0;
+        if (report.reused_preconditioner)
           {
-            cg.solve(matrix, solution, rhs, preconditioner);
-          }
-        catch (const SolverControl::NoConvergence &e)
-          {
-            if (method == Method::automatic)
+            SolverControl control(std::min(limit, 2 * fresh_iterations + 10),
+                                  target);
+            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+            try
               {
-                // Factorise, now and in the following load steps.
-                cg_failed     = true;
-                Report direct = solve_direct(matrix, solution, rhs);
-                direct.method += ", cg failed";
-                return direct;
+                cg.solve(matrix, solution, rhs, *amg);
+                report.iterations = control.last_step();
               }
-            AssertThrow(false,
-                        ExcMessage(
-                          "Linear solver: CG + AMG did not converge in " +
-                          std::to_string(e.last_step) +
-                          " iterations (residual " +
-                          std::to_string(e.last_residual / rhs_norm) +
-                          " of the right-hand side). The system may "
-                          "be ill-conditioned: try Method = direct."));
+            catch (const SolverControl::NoConvergence &)
+              {
+                iterations = control.last_step();
+                amg.reset();
+                report.reused_preconditioner = false;
+                prepare_preconditioner(matrix, dof_handler, report);
+              }
           }
-        report.method     = "cg amg";
-        report.iterations = control.last_step();
+        if (!report.reused_preconditioner)
+          {
+            SolverControl control(limit - std::min(limit - 1, iterations),
+                                  target);
+            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+            try
+              {
+                cg.solve(matrix, solution, rhs, *amg);
+              }
+            catch (const SolverControl::NoConvergence &e)
+              {
+                amg.reset();
+                last_solution.clear();
+                if (method == Method::automatic)
+                  {
+                    // Factorise, now and in the following load steps.
+                    cg_failed     = true;
+                    Report direct = solve_direct(matrix, solution, rhs);
+                    direct.method += ", cg failed";
+                    return direct;
+                  }
+                AssertThrow(false,
+                            ExcMessage(
+                              "Linear solver: CG + AMG did not converge in " +
+                              std::to_string(iterations + e.last_step) +
+                              " iterations (residual " +
+                              std::to_string(e.last_residual / rhs_norm) +
+                              " of the right-hand side). The system may "
+                              "be ill-conditioned: try Method = direct."));
+              }
+            report.iterations = iterations + control.last_step();
+            fresh_iterations  = control.last_step();
+          }
+        // A hierarchy that has become much slower than when it was new is
+        // rebuilt for the next solve.
+        else if (report.iterations > (3 * fresh_iterations) / 2 + 2)
+          amg.reset();
+
+        report.method = "cg amg";
+        last_solution = solution;
       }
 
     report.relative_residual = relative_residual(matrix, solution, rhs);

@@ -5,9 +5,12 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <cstdint>
+#include <memory>
 #include <string>
 
 namespace bsmpm
@@ -40,6 +43,9 @@ namespace bsmpm
       unsigned int refinement_steps = 0;
       /** ||K x - b|| / ||b|| after the solve. */
       double relative_residual = 0;
+      /** cg amg: whether the multigrid hierarchy of an earlier solve served
+       * again (see 'Preconditioner reuse'). */
+      bool reused_preconditioner = false;
     };
 
     static void
@@ -79,8 +85,26 @@ namespace bsmpm
                  TrilinosWrappers::MPI::Vector        &solution,
                  const TrilinosWrappers::MPI::Vector  &rhs) const;
 
+    /** cg amg: the multigrid preconditioner, kept for later solves. */
+    void
+    prepare_preconditioner(const TrilinosWrappers::SparseMatrix &matrix,
+                           const DoFHandler<2>                  &dof_handler,
+                           Report                               &report) const;
+
+    /** The relative tolerance of CG ('Tolerance', or the automatic one). */
+    double
+    relative_tolerance(const DoFHandler<2> &dof_handler) const;
+
+    enum class Reuse
+    {
+      none,
+      aggregates,
+      whole
+    };
+
     Method       method              = Method::automatic;
-    double       tolerance           = 1e-12;
+    double       tolerance           = 0;
+    Reuse        reuse               = Reuse::whole;
     unsigned int max_iterations      = 10000;
     unsigned int automatic_threshold = 100000;
     unsigned int max_refinements     = 3;
@@ -88,6 +112,22 @@ namespace bsmpm
     /** Automatic mode: CG did not converge in an earlier load step. */
     mutable bool cg_failed            = false;
     unsigned int condition_iterations = 2000;
+
+    /** The AMG hierarchy of the last CG solve, the matrix it was built on
+     * and a fingerprint of that matrix's structure (the pattern and the
+     * decoupled rows: constrained DoFs). A matrix rebuilt with another
+     * pattern, even at the same address, has another fingerprint. */
+    mutable std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    mutable const void   *amg_matrix    = nullptr;
+    mutable std::uint64_t amg_structure = 0;
+    /** CG iterations of the solve for which the hierarchy was built. */
+    mutable unsigned int fresh_iterations = 0;
+    /** The automatic tolerance and the grid it was computed for. */
+    mutable double       automatic_tolerance = 1e-8;
+    mutable unsigned int cached_levels       = 0;
+    /** The last CG solution: the first guess of the next solve if it is a
+     * better one than zero. */
+    mutable TrilinosWrappers::MPI::Vector last_solution;
   };
 } // namespace bsmpm
 
