@@ -2,6 +2,9 @@
 
 #include <bsmpm/constitutive_update.h>
 
+#include <cmath>
+#include <limits>
+
 namespace bsmpm
 {
   namespace
@@ -22,14 +25,77 @@ namespace bsmpm
         d[i] = increment(dof_indices[i]) +
                (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
     }
+
+    /** The points of a cell as ConstitutiveUpdate::cell_system() takes
+     * them. */
+    void
+    gather_points(
+      const Particles::ParticleHandler<2>::particle_iterator_range &range,
+      std::vector<ConstitutiveUpdate::PointView>                   &views)
+    {
+      views.clear();
+      for (const auto &particle : range)
+        views.push_back(
+          {particle.get_reference_location(), particle.get_properties()});
+    }
+
+    /** A 2x2 tensor as the in-plane block of a 3x3 one (zz = @p zz). */
+    Tensor<2, 3>
+    embed(const Tensor<2, 2> &t, const double zz)
+    {
+      Tensor<2, 3> e;
+      for (unsigned int i = 0; i < 2; ++i)
+        for (unsigned int j = 0; j < 2; ++j)
+          e[i][j] = t[i][j];
+      e[2][2] = zz;
+      return e;
+    }
+
+    /** The elastic strain stored in a point (zz included). */
+    SymmetricTensor<2, 3>
+    stored_elastic_strain(const ArrayView<const double> &props)
+    {
+      SymmetricTensor<2, 3> e;
+      e[0][0] = props[Property::elastic_strain];
+      e[1][1] = props[Property::elastic_strain + 1];
+      e[2][2] = props[Property::elastic_strain + 2];
+      e[0][1] = props[Property::elastic_strain + 3];
+      return e;
+    }
+
+    /** The deformation gradient stored in a point. */
+    Tensor<2, 2>
+    stored_deformation_gradient(const ArrayView<const double> &props)
+    {
+      const double *F = &props[Property::deformation_gradient];
+      return Tensor<2, 2>({{F[0], F[1]}, {F[2], F[3]}});
+    }
+
+    double
+    log_of(const double x)
+    {
+      return std::log(x);
+    }
+    double
+    inverse_of(const double x)
+    {
+      return 1. / x;
+    }
+    double
+    exp_of(const double x)
+    {
+      return std::exp(x);
+    }
   } // namespace
 
 
 
   ConstitutiveUpdate::ConstitutiveUpdate(const ConstitutiveModel &model,
-                                         const bool               b_bar)
+                                         const bool               b_bar,
+                                         const Kinematics         kinematics)
     : model(model)
     , b_bar(b_bar)
+    , point_kinematics(kinematics)
   {}
 
 
@@ -53,10 +119,9 @@ namespace bsmpm
 
 
   ConstitutiveUpdate::CellStrain
-  ConstitutiveUpdate::cell_strain(
-    const Q1CellKernel                                           &kernel,
-    const Particles::ParticleHandler<2>::particle_iterator_range &cell_points,
-    const Q1CellKernel::LocalVector                              &d) const
+  ConstitutiveUpdate::cell_strain(const Q1CellKernel              &kernel,
+                                  const std::vector<PointView>    &cell_points,
+                                  const Q1CellKernel::LocalVector &d) const
   {
     CellStrain strain;
     strain.coefficients = kernel.strain_coefficients(d);
@@ -66,18 +131,29 @@ namespace bsmpm
     // The volumetric strain of Q1 is affine in the cell, so its mean over
     // the points is its value at their volume-weighted centroid.
     double v = 0, vs = 0, vt = 0;
-    for (const auto &particle : cell_points)
+    for (const auto &point : cell_points)
       {
-        const double   volume = particle.get_properties()[Property::volume];
-        const Point<2> st     = particle.get_reference_location();
+        const double volume = point.props[Property::volume];
         v += volume;
-        vs += volume * st[0];
-        vt += volume * st[1];
+        vs += volume * point.st[0];
+        vt += volume * point.st[1];
       }
     if (v == 0.)
       return strain;
     strain.use_b_bar = true;
     strain.centroid  = Point<2>(vs / v, vt / v);
+    if (point_kinematics == Kinematics::finite_strain)
+      {
+        // F-bar: the same idea for ln det f, which is not affine; its value
+        // at the centroid stands for the cell.
+        const Tensor<2, 2> f =
+          unit_symmetric_tensor<2>() + kernel.gradient(d, strain.centroid);
+        strain.log_det_centroid    = std::log(determinant(f));
+        const Tensor<2, 2> f_inv_T = transpose(invert(f));
+        for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+          strain.centroid_gradients[i] =
+            f_inv_T * kernel.scalar_gradient(i, strain.centroid);
+      }
     return strain;
   }
 
@@ -108,6 +184,23 @@ namespace bsmpm
 
 
 
+  Tensor<1, 4>
+  ConstitutiveUpdate::strain_increment(const Q1CellKernel              &kernel,
+                                       const CellStrain                &strain,
+                                       const Point<2>                  &st,
+                                       const Q1CellKernel::LocalVector &d,
+                                       std::array<Voigt, 8>            &B,
+                                       std::array<Tensor<1, 4>, 8>     &B_bar)
+  {
+    strain_columns(kernel, strain, st, B, B_bar);
+    Tensor<1, 4> de;
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      de += d[i] * B_bar[i];
+    return de;
+  }
+
+
+
   ConstitutiveResponse
   ConstitutiveUpdate::respond(const ArrayView<const double> &props,
                               const Tensor<1, 4>            &de,
@@ -121,6 +214,152 @@ namespace bsmpm
     e[0][2] = e[1][2]               = 0;
     state.equivalent_plastic_strain = props[Property::plastic_strain];
     return model.update(state);
+  }
+
+
+
+  ConstitutiveUpdate::FiniteStrainPoint
+  ConstitutiveUpdate::finite_strain_trial(const Q1CellKernel            &kernel,
+                                          const CellStrain              &strain,
+                                          const Point<2>                &st,
+                                          const ArrayView<const double> &props,
+                                          const Q1CellKernel::LocalVector &d,
+                                          const Tensor<2, 2> *gradient,
+                                          ConstitutiveState  &state) const
+  {
+    FiniteStrainPoint point;
+    point.f = unit_symmetric_tensor<2>() +
+              (gradient ? *gradient : kernel.gradient(d, st));
+    point.det_f = determinant(point.f);
+    if (!(point.det_f > 0))
+      return point; // the caller reports an inverted point
+    const Tensor<2, 2> f_inv_T = transpose(invert(point.f));
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      point.gradients[i] = f_inv_T * kernel.scalar_gradient(i, st);
+
+    // b_e,n = exp(2 eps_e,n); b_e^tr = f b_e,n f^T, f_zz = 1.
+    const SymmetricTensor<2, 3> b_n =
+      isotropic_tensor_function(2 * stored_elastic_strain(props),
+                                exp_of,
+                                exp_of)
+        .first;
+    const Tensor<2, 3>          f3 = embed(point.f, 1.);
+    const SymmetricTensor<2, 3> b_trial =
+      symmetrize(Tensor<2, 3>(f3 * Tensor<2, 3>(b_n) * transpose(f3)));
+    const auto [log_b, dlog_b] =
+      isotropic_tensor_function(b_trial, log_of, inverse_of);
+    for (unsigned int i = 0; i < 2; ++i)
+      for (unsigned int j = 0; j < 2; ++j)
+        point.trial_b[i][j] = b_trial[i][j];
+    point.log_derivative = dlog_b;
+
+    state.elastic_strain = 0.5 * log_b;
+    // F-bar: f scaled by (det f_c / det f)^(1/3) (zz included), so that
+    // ln det f is that of the centroid; in small strain this is B-bar.
+    if (strain.use_b_bar)
+      state.elastic_strain +=
+        (strain.log_det_centroid - std::log(point.det_f)) / 3 *
+        unit_symmetric_tensor<3>();
+    state.equivalent_plastic_strain = props[Property::plastic_strain];
+    return point;
+  }
+
+
+
+  unsigned int
+  ConstitutiveUpdate::cell_system(const Q1CellKernel              &kernel,
+                                  const std::vector<PointView>    &cell_points,
+                                  const Q1CellKernel::LocalVector &d,
+                                  FullMatrix<double>              &K,
+                                  Vector<double>                  &f) const
+  {
+    constexpr unsigned int      n      = Q1CellKernel::dofs_per_cell;
+    const CellStrain            strain = cell_strain(kernel, cell_points, d);
+    std::array<Voigt, n>        B;
+    std::array<Tensor<1, 4>, n> B_bar, DB_bar;
+    std::array<Tensor<1, 2>, n> tau_g;
+    ConstitutiveState           state;
+    unsigned int                n_yielded = 0;
+    K                                     = 0;
+    f                                     = 0;
+    for (const auto &point : cell_points)
+      {
+        const auto  &props = point.props;
+        const double w     = quadrature_weights ? props[Property::weight] :
+                                                  props[Property::volume];
+        if (props[Property::volume] == 0. || w == 0.)
+          continue;
+
+        if (point_kinematics == Kinematics::small_strain)
+          {
+            const Tensor<1, 4> de =
+              strain_increment(kernel, strain, point.st, d, B, B_bar);
+            const auto response = respond(props, de, state);
+            n_yielded += response.yielded;
+            const Tensor<1, 4> sigma({response.stress[0][0],
+                                      response.stress[1][1],
+                                      response.stress[2][2],
+                                      response.stress[0][1]});
+            const Tensor<2, 4> D = voigt_tangent(response.tangent);
+            for (unsigned int i = 0; i < n; ++i)
+              DB_bar[i] = D * B_bar[i];
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                f[i] += w * (B_bar[i] * sigma);
+                for (unsigned int j = 0; j < n; ++j)
+                  K(i, j) += w * (B_bar[i] * DB_bar[j]);
+              }
+            continue;
+          }
+
+        // Finite strain (doc/finite-strain.md).
+        const FiniteStrainPoint kin = finite_strain_trial(
+          kernel, strain, point.st, props, d, nullptr, state);
+        if (!(kin.det_f > 0))
+          {
+            // An inverted point: no finite residual, so Newton cuts the step.
+            f = std::numeric_limits<double>::quiet_NaN();
+            return n_yielded;
+          }
+        const auto response = model.update(state);
+        n_yielded += response.yielded;
+        const SymmetricTensor<2, 3> &tau = response.stress;
+        const double                 c   = w / props[Property::det_F];
+        const SymmetricTensor<4, 3>  DL = response.tangent * kin.log_derivative;
+        const SymmetricTensor<2, 3>  D1 =
+          response.tangent * unit_symmetric_tensor<3>();
+        const auto N = Q1CellKernel::vertex_shape_values(point.st);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int r = 0; r < 2; ++r)
+            tau_g[i][r] =
+              tau[r][0] * kin.gradients[i][0] + tau[r][1] * kin.gradients[i][1];
+        for (unsigned int a = 0; a < n; ++a)
+          f[a] += c * (tau_g[a][kernel.component(a)] -
+                       body_force[kernel.component(a)] * N[kernel.vertex(a)]);
+        for (unsigned int b = 0; b < n; ++b)
+          {
+            // The unit increment of DoF b (component k) gives
+            // delta b^tr = 2 sym(e_k (x) h), h = b^tr g_b, and
+            // delta eps^tr = L : sym(e_k (x) h) (+ F-bar's volumetric part).
+            const unsigned int    k = kernel.component(b), o = 1 - k;
+            const Tensor<1, 2>    h = kin.trial_b * kin.gradients[b];
+            SymmetricTensor<2, 3> S;
+            S[k][k]                    = h[k];
+            S[k][o]                    = h[o] / 2;
+            SymmetricTensor<2, 3> dtau = DL * S;
+            if (strain.use_b_bar)
+              dtau += (strain.centroid_gradients[b][k] - kin.gradients[b][k]) /
+                      3 * D1;
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                const unsigned int  i = kernel.component(a);
+                const Tensor<1, 2> &g = kin.gradients[a];
+                K(a, b) += c * (dtau[i][0] * g[0] + dtau[i][1] * g[1] -
+                                tau_g[b][i] * g[k]);
+              }
+          }
+      }
+    return n_yielded;
   }
 
 
@@ -142,54 +381,20 @@ namespace bsmpm
     Vector<double>                       cell_vector(n);
     std::vector<types::global_dof_index> dof_indices(n);
     Q1CellKernel::LocalVector            d;
-    std::array<Voigt, n>                 B;
-    std::array<Tensor<1, 4>, n>          B_bar, DB_bar;
-    ConstitutiveState                    state;
+    std::vector<PointView>               views;
     unsigned long long                   n_yielded = 0;
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned() ||
-            particles.n_particles_in_cell(cell) == 0)
+            particles.n_particles_in_cell(cell) == 0 ||
+            !points.holds_material(cell))
           continue;
         local_increment(cell, increment, prescribed, dof_indices, d);
-        const auto cell_points = particles.particles_in_cell(cell);
-        const auto strain      = cell_strain(kernel, cell_points, d);
-        bool       any         = false;
-        cell_matrix            = 0;
-        cell_vector            = 0;
-        for (const auto &particle : cell_points)
-          {
-            const auto   props = particle.get_properties();
-            const double w     = quadrature_weights ? props[Property::weight] :
-                                                      props[Property::volume];
-            if (props[Property::volume] == 0. || w == 0.)
-              continue;
-            any               = true;
-            const Point<2> st = particle.get_reference_location();
-            strain_columns(kernel, strain, st, B, B_bar);
-            Tensor<1, 4> de;
-            for (unsigned int i = 0; i < n; ++i)
-              de += d[i] * B_bar[i];
-            const auto response = respond(props, de, state);
-            n_yielded += response.yielded;
-            const Tensor<1, 4> sigma({response.stress[0][0],
-                                      response.stress[1][1],
-                                      response.stress[2][2],
-                                      response.stress[0][1]});
-            const Tensor<2, 4> D = voigt_tangent(response.tangent);
-            for (unsigned int i = 0; i < n; ++i)
-              DB_bar[i] = D * B_bar[i];
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                cell_vector[i] += w * (B_bar[i] * sigma);
-                for (unsigned int j = 0; j < n; ++j)
-                  cell_matrix(i, j) += w * (B_bar[i] * DB_bar[j]);
-              }
-          }
-        if (any)
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+        gather_points(particles.particles_in_cell(cell), views);
+        n_yielded += cell_system(kernel, views, d, cell_matrix, cell_vector);
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_vector, dof_indices, tangent, internal_force);
       }
     return n_yielded;
   }
@@ -210,48 +415,95 @@ namespace bsmpm
     Q1CellKernel::LocalVector            d;
     std::array<Voigt, n>                 B;
     std::array<Tensor<1, 4>, n>          B_bar;
+    std::vector<PointView>               views;
     ConstitutiveState                    state;
     unsigned long long                   n_yielded = 0;
+    const bool finite = point_kinematics == Kinematics::finite_strain;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned() ||
             particles.n_particles_in_cell(cell) == 0)
           continue;
         local_increment(cell, increment, prescribed, dof_indices, d);
-        const auto cell_points  = particles.particles_in_cell(cell);
-        const auto strain       = cell_strain(kernel, cell_points, d);
+        const auto cell_points = particles.particles_in_cell(cell);
+        gather_points(cell_points, views);
         const bool has_material = points.holds_material(cell);
+        CellStrain strain;
+        if (has_material)
+          strain = cell_strain(kernel, views, d);
         for (auto &particle : cell_points)
           {
-            const Point<2> st = particle.get_reference_location();
-            Tensor<1, 4>   de;
-            if (has_material)
+            const Point<2> st    = particle.get_reference_location();
+            auto           props = particle.get_properties();
+            // Tracking points on the face of a cell without material take
+            // the field of the neighbour that holds material.
+            const Tensor<2, 2> grad =
+              has_material ? kernel.gradient(d, st) :
+                             points.boundary_gradient(
+                               kernel, cell, st, increment, prescribed);
+            const Tensor<2, 2>   F_n = stored_deformation_gradient(props);
+            ConstitutiveResponse response;
+            double               det_f = 1;
+            if (finite)
               {
-                strain_columns(kernel, strain, st, B, B_bar);
-                for (unsigned int i = 0; i < n; ++i)
-                  de += d[i] * B_bar[i];
+                const FiniteStrainPoint kin = finite_strain_trial(
+                  kernel, strain, st, props, d, &grad, state);
+                det_f    = kin.det_f;
+                response = model.update(state);
               }
             else
               {
-                // Tracking points on the face of a cell without material.
-                const Voigt e = points.boundary_strain(
-                  kernel, cell, st, increment, prescribed);
-                de = Tensor<1, 4>({e[0], e[1], 0., e[2]});
+                Tensor<1, 4> de;
+                if (has_material)
+                  de = strain_increment(kernel, strain, st, d, B, B_bar);
+                else
+                  {
+                    const Voigt e = points.boundary_strain(
+                      kernel, cell, st, increment, prescribed);
+                    de = Tensor<1, 4>({e[0], e[1], 0., e[2]});
+                  }
+                response = respond(props, de, state);
               }
-            auto        props                   = particle.get_properties();
-            const auto  response                = respond(props, de, state);
             const auto &eps                     = state.elastic_strain;
             props[Property::elastic_strain]     = eps[0][0];
             props[Property::elastic_strain + 1] = eps[1][1];
             props[Property::elastic_strain + 2] = eps[2][2];
             props[Property::elastic_strain + 3] = eps[0][1];
             props[Property::plastic_strain] = state.equivalent_plastic_strain;
-            props[Property::stress]         = response.stress[0][0];
-            props[Property::stress + 1]     = response.stress[1][1];
-            props[Property::stress + 2]     = response.stress[0][1];
-            props[Property::stress_zz]      = response.stress[2][2];
             props[Property::yielded]        = response.yielded ? 1. : 0.;
             n_yielded += response.yielded && props[Property::volume] > 0;
+
+            // The motion of the point: F_n+1 = f F_n.
+            const Tensor<2, 2> F = (unit_symmetric_tensor<2>() + grad) * F_n;
+            const double       J = determinant(F);
+            props[Property::deformation_gradient]     = F[0][0];
+            props[Property::deformation_gradient + 1] = F[0][1];
+            props[Property::deformation_gradient + 2] = F[1][0];
+            props[Property::deformation_gradient + 3] = F[1][1];
+            props[Property::det_F]                    = J;
+
+            // Cauchy stress: the Kirchhoff stress over J in finite strain.
+            const double scale          = finite ? 1. / J : 1.;
+            props[Property::stress]     = scale * response.stress[0][0];
+            props[Property::stress + 1] = scale * response.stress[1][1];
+            props[Property::stress + 2] = scale * response.stress[0][1];
+            props[Property::stress_zz]  = scale * response.stress[2][2];
+            if (finite)
+              {
+                // V = det(f) V_n; the strain is the logarithmic strain
+                // ln(F F^T) / 2 (MaterialPoints::move() leaves it alone).
+                props[Property::volume] *= det_f;
+                const Tensor<2, 3> F3 = embed(F, 1.);
+                const auto         log_strain =
+                  isotropic_tensor_function(symmetrize(
+                                              Tensor<2, 3>(F3 * transpose(F3))),
+                                            log_of,
+                                            inverse_of)
+                    .first;
+                props[Property::strain]     = log_strain[0][0] / 2;
+                props[Property::strain + 1] = log_strain[1][1] / 2;
+                props[Property::strain + 2] = log_strain[0][1] / 2;
+              }
           }
       }
     return Utilities::MPI::sum(n_yielded, grid.mpi_communicator());

@@ -13,7 +13,8 @@ namespace bsmpm
   std::map<std::string, double>
   compute_errors(const MaterialPoints &points,
                  const ExactSolution  &exact,
-                 const MPI_Comm        communicator)
+                 const MPI_Comm        communicator,
+                 const bool            finite_strain)
   {
     using P                                = MaterialPoints::Property;
     const std::array<std::string, 5> names = {
@@ -29,7 +30,8 @@ namespace bsmpm
     for (const auto &particle : points.particle_handler())
       {
         const auto   props = particle.get_properties();
-        const double V     = props[P::volume];
+        const double V =
+          props[P::volume] / (finite_strain ? props[P::det_F] : 1.);
         if (V == 0.)
           continue;
         exact.vector_value(Point<2>(props[P::initial_position],

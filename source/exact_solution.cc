@@ -3,6 +3,8 @@
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/parameter_tools.h>
 
+#include <boost/math/special_functions/lambert_w.hpp>
+
 #include <cmath>
 #include <sstream>
 
@@ -120,7 +122,8 @@ namespace bsmpm
   std::unique_ptr<ExactSolution>
   ExactSolution::create(ParameterHandler            &prm,
                         const LinearElasticMaterial &material,
-                        const Tensor<1, 2>          &gravity)
+                        const Tensor<1, 2>          &gravity,
+                        const bool                   finite_strain)
   {
     std::unique_ptr<ExactSolution> solution;
     prm.enter_subsection("Exact solution");
@@ -133,7 +136,8 @@ namespace bsmpm
                                                   material.density() *
                                                     gravity[1],
                                                   prm.get_double("Base"),
-                                                  prm.get_double("Height"));
+                                                  prm.get_double("Height"),
+                                                  finite_strain);
         prm.leave_subsection();
       }
     else if (name == "constant stress")
@@ -183,12 +187,14 @@ namespace bsmpm
     const LinearElasticMaterial &material,
     const double                 unit_weight_y,
     const double                 base,
-    const double                 height)
+    const double                 height,
+    const bool                   finite_strain)
     : b_y(unit_weight_y)
     , base(base)
     , height(height)
     , constrained_modulus(material.constrained_modulus())
     , lateral_ratio(material.stiffness()[0][1] / material.stiffness()[1][1])
+    , finite_strain(finite_strain)
   {
     AssertThrow(height > 0,
                 ExcMessage("Exact solution: the column height must be "
@@ -202,8 +208,23 @@ namespace bsmpm
   {
     // sigma_yy' = -b_y with sigma_yy(H) = 0, and eps_yy = sigma_yy / E_c.
     const double y = X[1] - base;
-    return Tensor<1, 2>(
-      {0., b_y * (height * y - y * y / 2) / constrained_modulus});
+    if (!finite_strain || b_y == 0.)
+      return Tensor<1, 2>(
+        {0., b_y * (height * y - y * y / 2) / constrained_modulus});
+    // Finite strain: the weight above the initial height Y is unchanged,
+    // so sigma_yy(Y) = b_y (H - Y) as in small strain, and with the stretch
+    // s = dy/dY, tau_yy = E_c ln s = s sigma_yy: ln(s) / s = -q,
+    // q = -b_y (H - Y) / E_c, i.e. s = exp(-W(q)) (Lambert's W, principal
+    // branch). u(Y) = int_0^Y (s - 1) dY and int exp(-W(q)) dq = W + W^2/2
+    // (q = W e^W) give u = E_c / b_y (G(q(Y)) - G(q(0))),
+    // G(q) = W(q) + W(q)^2 / 2 - q.
+    const auto G = [](const double q) {
+      const double W = boost::math::lambert_w0(q);
+      return W + W * W / 2 - q;
+    };
+    const double q  = -b_y * (height - y) / constrained_modulus;
+    const double q0 = -b_y * height / constrained_modulus;
+    return Tensor<1, 2>({0., constrained_modulus / b_y * (G(q) - G(q0))});
   }
 
 
@@ -224,8 +245,10 @@ namespace bsmpm
   ColumnUnderSelfWeight::description() const
   {
     std::ostringstream s;
-    s << "column under self weight: unit weight " << -b_y << " N/m^3, height "
-      << height << " m, constrained modulus " << constrained_modulus
+    s << (finite_strain ? "column under self weight (finite strain)" :
+                          "column under self weight")
+      << ": unit weight " << -b_y << " N/m^3, height " << height
+      << " m, constrained modulus " << constrained_modulus
       << " Pa, top displacement " << displacement(Point<2>(0, base + height))[1]
       << " m";
     return s.str();

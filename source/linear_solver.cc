@@ -3,6 +3,7 @@
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 
@@ -360,9 +361,27 @@ namespace bsmpm
   LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                       TrilinosWrappers::MPI::Vector        &solution,
                       const TrilinosWrappers::MPI::Vector  &rhs,
-                      const DoFHandler<2>                  &dof_handler) const
+                      const DoFHandler<2>                  &dof_handler,
+                      const bool                            symmetric) const
   {
-    Report       report;
+    Report report;
+    // CG for symmetric systems; GMRES with the same multigrid for the
+    // unsymmetric tangents of finite strain (F-bar, follower pressure) and
+    // of non-associated flow.
+    const auto iterate = [&](SolverControl &control) {
+      if (symmetric)
+        {
+          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+          cg.solve(matrix, solution, rhs, *amg);
+        }
+      else
+        {
+          SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+            control,
+            SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100));
+          gmres.solve(matrix, solution, rhs, *amg);
+        }
+    };
     const double rhs_norm = rhs.l2_norm();
     if (rhs_norm == 0.)
       {
@@ -410,10 +429,9 @@ namespace bsmpm
           {
             SolverControl control(std::min(limit, 2 * fresh_iterations + 10),
                                   target);
-            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
             try
               {
-                cg.solve(matrix, solution, rhs, *amg);
+                iterate(control);
                 report.iterations = control.last_step();
               }
             catch (const SolverControl::NoConvergence &)
@@ -428,10 +446,9 @@ namespace bsmpm
           {
             SolverControl control(limit - std::min(limit - 1, iterations),
                                   target);
-            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
             try
               {
-                cg.solve(matrix, solution, rhs, *amg);
+                iterate(control);
               }
             catch (const SolverControl::NoConvergence &e)
               {
@@ -462,7 +479,7 @@ namespace bsmpm
         else if (report.iterations > (3 * fresh_iterations) / 2 + 2)
           amg.reset();
 
-        report.method = "cg amg";
+        report.method = symmetric ? "cg amg" : "gmres amg";
         last_solution = solution;
       }
 

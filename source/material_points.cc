@@ -54,6 +54,12 @@ namespace bsmpm
     properties[Property::d_function]           = 1.;
     properties[Property::initial_position]     = position[0];
     properties[Property::initial_position + 1] = position[1];
+    if (n_point_properties == Property::n_properties_inelastic)
+      {
+        properties[Property::deformation_gradient]     = 1.;
+        properties[Property::deformation_gradient + 3] = 1.;
+        properties[Property::det_F]                    = 1.;
+      }
     particles.insert_particle(position,
                               grid.local_coordinates(position, ij),
                               id,
@@ -162,7 +168,8 @@ namespace bsmpm
     const std::vector<bool>                          *support_cells,
     const SupportFunction                            &support,
     const std::vector<double>                        *cell_quality,
-    const bool                                        update_stress)
+    const bool                                        update_stress,
+    const bool                                        update_strain)
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
@@ -217,7 +224,8 @@ namespace bsmpm
                 if (update_stress)
                   props[Property::stress + r] += ds[r];
                 // Stored strain is the tensor component: eps_xy = gamma/2.
-                props[Property::strain + r] += (r == 2 ? de[r] / 2 : de[r]);
+                if (update_strain)
+                  props[Property::strain + r] += (r == 2 ? de[r] / 2 : de[r]);
               }
             props[Property::displacement] += du[0];
             props[Property::displacement + 1] += du[1];
@@ -454,13 +462,10 @@ namespace bsmpm
 
 
 
-  Voigt
-  MaterialPoints::boundary_strain(
-    const Q1CellKernel                               &kernel,
-    const DoFHandler<2>::active_cell_iterator        &cell,
-    const Point<2>                                   &st,
-    const LinearAlgebra::distributed::Vector<double> &increment,
-    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>
+  MaterialPoints::boundary_source(
+    const DoFHandler<2>::active_cell_iterator &cell,
+    const Point<2>                            &st) const
   {
     // A zero-volume point in a cell without material: a boundary point on a
     // grid line is sorted into the cell above or to the right of it, and a
@@ -489,15 +494,59 @@ namespace bsmpm
         where[face / 2] += (face % 2 == 0) ? 1. : -1.;
         break;
       }
-    std::vector<types::global_dof_index> dof_indices(
-      Q1CellKernel::dofs_per_cell);
-    source->get_dof_indices(dof_indices);
-    Q1CellKernel::LocalVector d;
-    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-      d[i] = increment(dof_indices[i]) +
-             (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
-    const auto e = kernel.strain_coefficients(d);
+    return {source, where};
+  }
+
+
+
+  namespace
+  {
+    /** The increment (plus the prescribed part) on the DoFs of @p cell. */
+    Q1CellKernel::LocalVector
+    cell_increment(const DoFHandler<2>::active_cell_iterator        &cell,
+                   const LinearAlgebra::distributed::Vector<double> &increment,
+                   const LinearAlgebra::distributed::Vector<double> *prescribed)
+    {
+      std::vector<types::global_dof_index> dof_indices(
+        Q1CellKernel::dofs_per_cell);
+      cell->get_dof_indices(dof_indices);
+      Q1CellKernel::LocalVector d;
+      for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+        d[i] = increment(dof_indices[i]) +
+               (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
+      return d;
+    }
+  } // namespace
+
+
+
+  Voigt
+  MaterialPoints::boundary_strain(
+    const Q1CellKernel                               &kernel,
+    const DoFHandler<2>::active_cell_iterator        &cell,
+    const Point<2>                                   &st,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  {
+    const auto [source, where] = boundary_source(cell, st);
+    const auto e =
+      kernel.strain_coefficients(cell_increment(source, increment, prescribed));
     return e[0] + where[0] * e[1] + where[1] * e[2];
+  }
+
+
+
+  Tensor<2, 2>
+  MaterialPoints::boundary_gradient(
+    const Q1CellKernel                               &kernel,
+    const DoFHandler<2>::active_cell_iterator        &cell,
+    const Point<2>                                   &st,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  {
+    const auto [source, where] = boundary_source(cell, st);
+    return kernel.gradient(cell_increment(source, increment, prescribed),
+                           where);
   }
 
 
@@ -525,7 +574,12 @@ namespace bsmpm
                                "equivalent_plastic_strain",
                                "stress_zz",
                                "yielded",
-                               "quadrature_weight"})
+                               "quadrature_weight",
+                               "F_xx",
+                               "F_xy",
+                               "F_yx",
+                               "F_yy",
+                               "det_F"})
         names.emplace_back(name);
     return names;
   }

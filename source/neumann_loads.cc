@@ -37,12 +37,15 @@ namespace bsmpm
                          const ExactSolution             *exact,
                          const double                     load_factor,
                          const AffineConstraints<double> &constraints,
-                         TrilinosWrappers::MPI::Vector   &rhs)
+                         TrilinosWrappers::MPI::Vector   &rhs,
+                         TrilinosWrappers::SparseMatrix  *follower)
   {
     points.clear();
-    std::string                          problem;
-    const QGauss<1>                      gauss(n_gauss_points);
-    Vector<double>                       cell_rhs(Q1CellKernel::dofs_per_cell);
+    std::string        problem;
+    const QGauss<1>    gauss(n_gauss_points);
+    Vector<double>     cell_rhs(Q1CellKernel::dofs_per_cell);
+    FullMatrix<double> cell_matrix(Q1CellKernel::dofs_per_cell,
+                                   Q1CellKernel::dofs_per_cell);
     std::vector<types::global_dof_index> dof_indices(
       Q1CellKernel::dofs_per_cell);
 
@@ -64,6 +67,9 @@ namespace bsmpm
                                  "in the 'Exact solution' section."));
           const BSplineCurve &spline = *curve.spline;
           cell_rhs                   = 0;
+          cell_matrix                = 0;
+          const bool follows =
+            follower && condition->kind == CurveCondition::Kind::pressure;
           for (unsigned int q = 0; q < gauss.size(); ++q)
             {
               const double u = piece.u_begin + gauss.point(q)[0] *
@@ -94,9 +100,33 @@ namespace bsmpm
               const Point<2> st = grid.local_coordinates(x, piece.cell);
               for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
                 cell_rhs[i] += kernel.shape_value(i, st) * t * dl;
+              if (follows)
+                {
+                  // R rotates the unit tangent onto the outward normal.
+                  const Tensor<1, 2> tangent =
+                    spline.derivative(u) / spline.derivative(u).norm();
+                  const double sign =
+                    n[0] * tangent[1] - n[1] * tangent[0] > 0 ? 1. : -1.;
+                  const double p = load_factor * condition->pressure * dl;
+                  for (unsigned int j = 0; j < Q1CellKernel::dofs_per_cell; ++j)
+                    {
+                      // (grad N_j) t, then R of it: R (a, b) = sign (b, -a).
+                      const Tensor<1, 2> Gt =
+                        kernel.shape_gradient(j, st) * tangent;
+                      const Tensor<1, 2> RGt({sign * Gt[1], -sign * Gt[0]});
+                      for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell;
+                           ++i)
+                        cell_matrix(i, j) +=
+                          p * (kernel.shape_value(i, st) * RGt);
+                    }
+                }
             }
           cell->get_dof_indices(dof_indices);
-          constraints.distribute_local_to_global(cell_rhs, dof_indices, rhs);
+          if (follows)
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_rhs, dof_indices, *follower, rhs);
+          else
+            constraints.distribute_local_to_global(cell_rhs, dof_indices, rhs);
         }
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }

@@ -95,6 +95,17 @@ namespace bsmpm
       "keeps the points' own (a model that stays elastic then gives the "
       "linear code's results, up to the cut cells' quadrature). Linear "
       "elasticity always uses the standard strain.");
+    prm.declare_entry(
+      "Kinematics",
+      "small strain",
+      Patterns::Selection("small strain|finite strain"),
+      "small strain: the paper's formulation (strain increments added, "
+      "stress of the small-strain model). finite strain: updated "
+      "Lagrangian, a deformation gradient per point, logarithmic (Hencky) "
+      "elastic strain with the exponential map, Kirchhoff stress, point "
+      "volumes det(F) V0, a pressure that follows the boundary within the "
+      "load step (doc/finite-strain.md). Finite strain always uses Newton "
+      "iterations, also for linear elasticity, and needs plane strain.");
     prm.leave_subsection();
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
@@ -140,11 +151,21 @@ namespace bsmpm
     material.parse_parameters(prm);
     constitutive_model = create_constitutive_model(prm);
     prm.enter_subsection("Material");
-    const bool b_bar = prm.get("Volumetric strain") == "B-bar";
+    const bool b_bar         = prm.get("Volumetric strain") == "B-bar";
+    const bool finite_strain = prm.get("Kinematics") == "finite strain";
     prm.leave_subsection();
-    if (!constitutive_model->is_linear())
-      constitutive_update =
-        std::make_unique<ConstitutiveUpdate>(*constitutive_model, b_bar);
+    AssertThrow(!finite_strain || material.model() ==
+                                    LinearElasticMaterial::Model::plane_strain,
+                ExcMessage("Material/Kinematics = finite strain needs "
+                           "'Model = plane strain': in plane stress the "
+                           "thickness stretch would be a further unknown."));
+    constitutive_update.reset();
+    if (!constitutive_model->is_linear() || finite_strain)
+      constitutive_update = std::make_unique<ConstitutiveUpdate>(
+        *constitutive_model,
+        b_bar && !constitutive_model->is_linear(),
+        finite_strain ? ConstitutiveUpdate::Kinematics::finite_strain :
+                        ConstitutiveUpdate::Kinematics::small_strain);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
@@ -160,7 +181,8 @@ namespace bsmpm
     output.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
     verification.parse_parameters(prm);
-    exact_solution = ExactSolution::create(prm, material, gravity);
+    exact_solution =
+      ExactSolution::create(prm, material, gravity, this->finite_strain());
   }
 
 
@@ -229,6 +251,9 @@ namespace bsmpm
       if (constitutive_update)
         {
           assembly->leave_material_to_points(true);
+          assembly->use_finite_strain(
+            constitutive_update->kinematics() ==
+            ConstitutiveUpdate::Kinematics::finite_strain);
           constitutive_update->use_quadrature_weights(
             cut_cell_quadrature.active());
         }
@@ -400,7 +425,10 @@ namespace bsmpm
           boundary_curves, grid, x, field, w);
       },
       &cell_quality,
-      /*update_stress=*/constitutive_update == nullptr);
+      /*update_stress=*/constitutive_update == nullptr,
+      /*update_strain=*/!constitutive_update ||
+        constitutive_update->kinematics() ==
+          ConstitutiveUpdate::Kinematics::small_strain);
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
@@ -567,7 +595,8 @@ namespace bsmpm
   Scene::evaluate_errors()
   {
     TimerOutput::Scope t(timer, "errors");
-    run_summary.errors = compute_errors(points, *exact_solution, communicator);
+    run_summary.errors =
+      compute_errors(points, *exact_solution, communicator, finite_strain());
     if (const auto lame =
           dynamic_cast<const LameCylinder *>(exact_solution.get()))
       for (const auto &[name, value] :
@@ -709,6 +738,8 @@ namespace bsmpm
         if (constitutive_update)
           {
             check_loads_finite(step);
+            constitutive_update->set_body_force((lambda + delta) *
+                                                material.density() * gravity);
             const auto result = solve_nonlinear(delta, record);
             if (!result.converged)
               {
@@ -785,6 +816,19 @@ namespace bsmpm
         increment.add(delta / previous_delta, previous_increment);
         assembly->constraints().set_zero(increment);
         increment.update_ghost_values();
+        // Where the last increment is a poor guess (finite rotations, a
+        // load path that turns), start from zero after all. The residual
+        // weighs the stiff modes most, so a guess that is closer in
+        // displacement may still leave a larger one: only one ten times
+        // larger than that of zero is dropped (cantilever in finite
+        // strain: 26 times in step 3).
+        if (!(assembly->newton_system(
+                *constitutive_update, points, increment, d_a) <
+              10 * reference))
+          {
+            increment = 0;
+            increment.update_ghost_values();
+          }
       }
     record.iterations = 0;
     const auto result = newton.solve(
@@ -799,10 +843,18 @@ namespace bsmpm
         TimerOutput::Scope            t(timer, "solve");
         TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
                                                  communicator);
+        // A pressure that follows the boundary within the step (finite
+        // strain) has an unsymmetric load stiffness.
+        const bool symmetric =
+          constitutive_update->symmetric_tangent() &&
+          !(constitutive_update->kinematics() ==
+              ConstitutiveUpdate::Kinematics::finite_strain &&
+            boundary_curves.has_loads());
         const auto report = linear_solver.solve(assembly->tangent(),
                                                 correction,
                                                 assembly->residual(),
-                                                grid.dof_handler());
+                                                grid.dof_handler(),
+                                                symmetric);
         assembly->constraints().distribute(correction);
         for (const auto i : grid.locally_owned_dofs())
           increment(i) += correction(i);

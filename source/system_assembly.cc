@@ -179,7 +179,7 @@ namespace bsmpm
 
     const Tensor<1, 2> body_force =
       load_factor * parts.material.density() * parts.gravity;
-    const bool has_body_force = body_force.norm() > 0;
+    const bool has_body_force = body_force.norm() > 0 && !finite_strain;
 
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
     FullMatrix<double>                   cell_matrix(n, n);
@@ -274,7 +274,8 @@ namespace bsmpm
                                      parts.exact_solution,
                                      load_factor,
                                      constraints,
-                                     system_rhs);
+                                     system_rhs,
+                                     finite_strain ? &system_matrix : nullptr);
       }
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);

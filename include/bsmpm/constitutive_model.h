@@ -88,6 +88,14 @@ namespace bsmpm
     virtual bool
     is_linear() const;
 
+    /** Whether the algorithmic tangent has the major symmetry (false for
+     * non-associated flow), so that CG can solve the Newton systems. */
+    virtual bool
+    symmetric_tangent() const
+    {
+      return true;
+    }
+
     /** The name as given in "Material/Constitutive model". */
     virtual std::string
     name() const = 0;

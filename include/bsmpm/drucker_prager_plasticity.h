@@ -73,6 +73,11 @@ namespace bsmpm
     {
       return c;
     }
+    bool
+    symmetric_tangent() const override
+    {
+      return eta_g == eta_f;
+    }
     /** Mean stress of the apex, xi c / eta (infinite for eta = 0). */
     double
     apex_pressure() const;

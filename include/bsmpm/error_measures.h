@@ -24,11 +24,15 @@ namespace bsmpm
    * - L2_u, L2_sigma: relative L2 errors over the points,
    *   sqrt(sum V |h - a|^2 / sum V |a|^2), with the Frobenius norm for the
    *   stress.
+   *
+   * The exact solution is a function of the initial positions, so the
+   * weights are the initial volumes: with @p finite_strain, V / det F.
    */
   std::map<std::string, double>
   compute_errors(const MaterialPoints &points,
                  const ExactSolution  &exact,
-                 const MPI_Comm        communicator);
+                 const MPI_Comm        communicator,
+                 const bool            finite_strain = false);
 
   /**
    * Radii of the deformed boundary arcs of a Lame cylinder (paper Sec. 4.3):

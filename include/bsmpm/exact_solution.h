@@ -64,12 +64,14 @@ namespace bsmpm
     /**
      * Creates the solution named in the "Exact solution" section, or returns
      * nullptr for "none". @p gravity is the acceleration of the Loading
-     * section (used by the column).
+     * section (used by the column); @p finite_strain selects the
+     * finite-strain solution where there is one (the column).
      */
     static std::unique_ptr<ExactSolution>
     create(ParameterHandler            &prm,
            const LinearElasticMaterial &material,
-           const Tensor<1, 2>          &gravity);
+           const Tensor<1, 2>          &gravity,
+           const bool                   finite_strain = false);
   };
 
 
@@ -79,10 +81,14 @@ namespace bsmpm
   class ColumnUnderSelfWeight : public ExactSolution
   {
   public:
+    /** With @p finite_strain, the column of Hencky material in finite
+     * strain (doc/finite-strain.md): the stress is the same function of
+     * the initial height, the displacement follows through Lambert's W. */
     ColumnUnderSelfWeight(const LinearElasticMaterial &material,
                           const double                 unit_weight_y,
                           const double                 base,
-                          const double                 height);
+                          const double                 height,
+                          const bool                   finite_strain = false);
     Tensor<1, 2>
     displacement(const Point<2> &X) const override;
     SymmetricTensor<2, 2>
@@ -92,6 +98,7 @@ namespace bsmpm
 
   private:
     double b_y, base, height, constrained_modulus, lateral_ratio;
+    bool   finite_strain;
   };
 
 

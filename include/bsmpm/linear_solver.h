@@ -54,12 +54,14 @@ namespace bsmpm
     parse_parameters(ParameterHandler &prm);
 
     /** Solves; in automatic mode, a CG failure makes this and every later
-     * solve direct. */
+     * solve direct. An unsymmetric @p matrix (not @p symmetric) is solved
+     * by GMRES with the same preconditioner instead of CG. */
     Report
     solve(const TrilinosWrappers::SparseMatrix &matrix,
           TrilinosWrappers::MPI::Vector        &solution,
           const TrilinosWrappers::MPI::Vector  &rhs,
-          const DoFHandler<2>                  &dof_handler) const;
+          const DoFHandler<2>                  &dof_handler,
+          const bool                            symmetric = true) const;
 
     /**
      * An estimate of the spectral condition number of @p matrix: the ratio

@@ -50,8 +50,14 @@ namespace bsmpm
       static constexpr unsigned int yielded        = 18; ///< 1 if plastic
       /** Quadrature weight of the point in this step (its volume, or the
        * moment-fitted weight in a cut cell, CutCellQuadrature). */
-      static constexpr unsigned int weight                 = 19;
-      static constexpr unsigned int n_properties_inelastic = 20;
+      static constexpr unsigned int weight = 19;
+      /** Deformation gradient F of the point's motion since the start
+       * (xx, xy, yx, yy; F_zz = 1 in plane strain) and det F: the
+       * kinematics of finite strain; in small strain a record of the
+       * points' motion. */
+      static constexpr unsigned int deformation_gradient   = 20;
+      static constexpr unsigned int det_F                  = 24;
+      static constexpr unsigned int n_properties_inelastic = 25;
     };
 
     /** Result of moving the points by one increment. */
@@ -161,7 +167,9 @@ namespace bsmpm
      * given) is reported for a point that leaves the grid. The points are not
      * re-sorted into cells; see sort_into_cells(). Without
      * @p update_stress the stress is left alone (a nonlinear model has
-     * stored it already, ConstitutiveUpdate::commit()).
+     * stored it already, ConstitutiveUpdate::commit()), without
+     * @p update_strain the strain (finite strain: commit() stores the
+     * logarithmic strain).
      */
     MoveReport
     move(const Q1CellKernel                               &kernel,
@@ -171,7 +179,8 @@ namespace bsmpm
          const std::vector<bool>   *support_cells                     = nullptr,
          const SupportFunction     &support                           = {},
          const std::vector<double> *cell_quality                      = nullptr,
-         const bool                 update_stress                     = true);
+         const bool                 update_stress                     = true,
+         const bool                 update_strain                     = true);
 
     /** Finds the cell and owner of every point after move(). */
     void
@@ -230,6 +239,16 @@ namespace bsmpm
       const LinearAlgebra::distributed::Vector<double> &increment,
       const LinearAlgebra::distributed::Vector<double> *prescribed) const;
 
+    /** The displacement gradient of the same field as boundary_strain():
+     * grad u, row = component. */
+    Tensor<2, 2>
+    boundary_gradient(
+      const Q1CellKernel                               &kernel,
+      const DoFHandler<2>::active_cell_iterator        &cell,
+      const Point<2>                                   &st,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
     /** Property names and interpretations for Particles::DataOut. */
     static std::vector<std::string>
     property_names(const unsigned int n_properties = Property::n_properties);
@@ -240,6 +259,12 @@ namespace bsmpm
     insert(const Point<2>             &position,
            const double                volume,
            const types::particle_index id);
+
+    /** The cell whose field boundary_strain() extends to a point at @p st
+     * of @p cell, and the point's local coordinates in it. */
+    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>
+    boundary_source(const DoFHandler<2>::active_cell_iterator &cell,
+                    const Point<2>                            &st) const;
 
     /** Records position and stress of a point if it is tracked. */
     void

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/background_grid.h>
@@ -43,6 +44,16 @@ namespace bsmpm
     /**
      * Adds the tractions of all curves, scaled by @p load_factor, to @p rhs
      * on the locally owned cells. @p exact is needed for "exact traction".
+     *
+     * With @p follower (finite strain), a pressure acts on the curve as
+     * the increment d deforms it within the step: on a piece with unit
+     * tangent t and outward normal n = R t, n dl becomes
+     * R (1 + grad u) t dl, which is linear in d, so its load stiffness
+     *
+     *   P_ab = lambda p int N_a . R (grad N_b) t dl
+     *
+     * (unsymmetric) is added to @p follower, K d = r. Other tractions act
+     * on the curve at the start of the step.
      */
     void
     assemble(const BoundaryCurves            &curves,
@@ -51,7 +62,8 @@ namespace bsmpm
              const ExactSolution             *exact,
              const double                     load_factor,
              const AffineConstraints<double> &constraints,
-             TrilinosWrappers::MPI::Vector   &rhs);
+             TrilinosWrappers::MPI::Vector   &rhs,
+             TrilinosWrappers::SparseMatrix  *follower = nullptr);
 
     /** The Gauss points of the last assemble() on this process. */
     const std::vector<QuadraturePoint> &

@@ -132,6 +132,27 @@ namespace bsmpm
     std::array<Voigt, 3>
     strain_coefficients(const LocalVector &d) const;
 
+    /** Gradient (row = component) of the local displacements @p d at
+     * @p st. */
+    Tensor<2, 2>
+    gradient(const LocalVector &d, const Point<2> &st) const
+    {
+      Tensor<2, 2> grad;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        grad[dof_component[i]] += d[i] * scalar_gradient(i, st);
+      return grad;
+    }
+
+    /** Gradient of the scalar shape function of the vertex of DoF @p i. */
+    Tensor<1, 2>
+    scalar_gradient(const unsigned int i, const Point<2> &st) const
+    {
+      // Rows xx/yy and xy of B hold d/dx and d/dy of N for the component.
+      const Voigt b = strain_column(i, st);
+      return dof_component[i] == 0 ? Tensor<1, 2>({b[0], b[2]}) :
+                                     Tensor<1, 2>({b[2], b[1]});
+    }
+
     /** Displacement of the local displacements @p d at @p st. */
     Tensor<1, 2>
     displacement(const LocalVector &d, const Point<2> &st) const

@@ -146,24 +146,33 @@ namespace bsmpm
     BackgroundGrid                     grid;
     LinearElasticMaterial              material;
     std::unique_ptr<ConstitutiveModel> constitutive_model;
-    /** Only for a nonlinear constitutive model. */
+    /** Only for a nonlinear constitutive model or finite strain. */
     std::unique_ptr<ConstitutiveUpdate> constitutive_update;
-    NewtonSolver                        newton;
-    BodyRegion                          region;
-    MaterialPointLayout                 layout;
-    MaterialPoints                      points;
-    BoundaryCurves                      boundary_curves;
-    NeumannLoads                        neumann_loads;
-    ImplicitBoundary                    implicit_boundary;
-    NitscheBoundary                     nitsche_boundary;
-    GhostPenalty                        ghost_penalty;
-    CutCellQuadrature                   cut_cell_quadrature;
-    LinearSolver                        linear_solver;
-    OutputWriter                        output;
-    Checkpoint                          checkpoint;
-    Verification                        verification;
-    std::unique_ptr<ExactSolution>      exact_solution;
-    std::unique_ptr<SystemAssembly>     assembly;
+
+    /** Whether the points follow the finite-strain kinematics. */
+    bool
+    finite_strain() const
+    {
+      return constitutive_update &&
+             constitutive_update->kinematics() ==
+               ConstitutiveUpdate::Kinematics::finite_strain;
+    }
+    NewtonSolver                    newton;
+    BodyRegion                      region;
+    MaterialPointLayout             layout;
+    MaterialPoints                  points;
+    BoundaryCurves                  boundary_curves;
+    NeumannLoads                    neumann_loads;
+    ImplicitBoundary                implicit_boundary;
+    NitscheBoundary                 nitsche_boundary;
+    GhostPenalty                    ghost_penalty;
+    CutCellQuadrature               cut_cell_quadrature;
+    LinearSolver                    linear_solver;
+    OutputWriter                    output;
+    Checkpoint                      checkpoint;
+    Verification                    verification;
+    std::unique_ptr<ExactSolution>  exact_solution;
+    std::unique_ptr<SystemAssembly> assembly;
 
     LinearAlgebra::distributed::Vector<double> increment;
     /** The last converged increment of a nonlinear material and its load

@@ -123,6 +123,18 @@ namespace bsmpm
       material_from_points = yes;
     }
 
+    /**
+     * Finite strain: the body force acts on the points' masses
+     * (ConstitutiveUpdate integrates it), and a pressure follows the
+     * boundary within the step, so that its load stiffness enters the
+     * matrix (NeumannLoads).
+     */
+    void
+    use_finite_strain(const bool yes)
+    {
+      finite_strain = yes;
+    }
+
     /** Locally owned points with volume that yield at the last
      * newton_system(), over all processes. */
     unsigned long long
@@ -176,6 +188,7 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector  newton_residual;
     unsigned long long             yielding             = 0;
     bool                           material_from_points = false;
+    bool                           finite_strain        = false;
     /**
      * Builds the sparsity pattern and the matrix: the couplings of every
      * cell, and across the faces of the cells flagged in @p face_cells (by

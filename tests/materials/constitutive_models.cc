@@ -17,13 +17,20 @@
 // von Mises, plane-strain limits (von Mises: shear strength sigma_y /
 // sqrt(3); Drucker-Prager: Mohr-Coulomb's strength in plane-strain flow),
 // ln and exp of symmetric tensors with their derivatives, and the
-// parameters. Only counts, yes/no and rounded figures are printed.
+// parameters. Finally the Newton system of one cell of points
+// (ConstitutiveUpdate, small and finite strain, standard strain and
+// B-bar / F-bar) against central differences of its internal force. Only
+// counts, yes/no and rounded figures are printed.
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+
 #include <bsmpm/constitutive_model.h>
+#include <bsmpm/constitutive_update.h>
 #include <bsmpm/drucker_prager_plasticity.h>
 #include <bsmpm/material.h>
 #include <bsmpm/von_mises_plasticity.h>
@@ -891,6 +898,118 @@ namespace
     }
     deallog.pop();
   }
+  /**
+   * The Newton system of one cell (ConstitutiveUpdate::cell_system) against
+   * central differences of its internal force, for small and finite strain,
+   * elastic and plastic points, with the standard strain and B-bar / F-bar:
+   * the consistent tangent of doc/newton.md and doc/finite-strain.md.
+   */
+  void
+  test_cell_tangents(Random &random)
+  {
+    deallog.push("cell tangents");
+    const FESystem<2>  fe(FE_Q<2>(1), 2);
+    const Tensor<2, 3> C; // the kernel's stiffness is not used here
+    const Q1CellKernel kernel(fe, Tensor<1, 2>({0.7, 0.5}), C);
+    using Property   = MaterialPoints::Property;
+    using Kinematics = ConstitutiveUpdate::Kinematics;
+
+    const LinearElasticModel      elastic(E, nu);
+    const VonMisesPlasticity      von_mises(E, nu, 2e4, 1e5);
+    const DruckerPragerPlasticity drucker_prager(
+      E,
+      nu,
+      1e4,
+      30 * degree,
+      10 * degree,
+      DruckerPragerPlasticity::Match::plane_strain);
+    const std::vector<std::pair<std::string, const ConstitutiveModel *>>
+      models = {{"linear elastic", &elastic},
+                {"von Mises", &von_mises},
+                {"Drucker-Prager", &drucker_prager}};
+
+    for (const auto kinematics :
+         {Kinematics::small_strain, Kinematics::finite_strain})
+      for (const auto &[name, model] : models)
+        for (const bool b_bar : {false, true})
+          {
+            ConstitutiveUpdate update(*model, b_bar, kinematics);
+            update.set_body_force(Tensor<1, 2>({3e3, -2e4}));
+            double       worst = 0, asymmetry = 0;
+            unsigned int yielded = 0, cases = 0;
+            for (unsigned int c = 0; c < 20; ++c)
+              {
+                // Five points with a random state, one of them without
+                // volume (a tracking point: ignored).
+                std::vector<std::vector<double>> props(
+                  5, std::vector<double>(Property::n_properties_inelastic));
+                std::vector<ConstitutiveUpdate::PointView> points;
+                for (unsigned int p = 0; p < props.size(); ++p)
+                  {
+                    auto &q             = props[p];
+                    q[Property::volume] = p == 4 ? 0. : 0.05 + 0.02 * p;
+                    q[Property::weight] = 0.8 * q[Property::volume];
+                    // Compressed, so that the frictional model is not
+                    // torn to its apex (zero tangent) by every increment.
+                    for (unsigned int k = 0; k < 4; ++k)
+                      q[Property::elastic_strain + k] =
+                        (k < 3 ? -4e-3 : 0.) + 1e-3 * (random() - 0.5);
+                    q[Property::plastic_strain] = 0.01 * random();
+                    q[Property::det_F]          = 0.8 + 0.4 * random();
+                    points.push_back(
+                      {Point<2>(random(), random()),
+                       ArrayView<const double>(q.data(), q.size())});
+                  }
+                // Increments from well inside the elastic range to large
+                // deformation (finite strain: stretches of up to 30 %).
+                const double scale =
+                  (c % 4 + 1) *
+                  (kinematics == Kinematics::small_strain ? 0.005 : 0.02);
+                Q1CellKernel::LocalVector d;
+                for (auto &x : d)
+                  x = scale * (random() - 0.5);
+                FullMatrix<double> K(8, 8), K_plus(8, 8), K_minus(8, 8);
+                Vector<double>     f(8), f_plus(8), f_minus(8);
+                yielded += update.cell_system(kernel, points, d, K, f) > 0;
+                double largest = 0;
+                for (unsigned int i = 0; i < 8; ++i)
+                  for (unsigned int j = 0; j < 8; ++j)
+                    largest = std::max(largest, std::abs(K(i, j)));
+                const double e = 1e-7;
+                for (unsigned int j = 0; j < 8; ++j)
+                  {
+                    auto plus = d, minus = d;
+                    plus[j] += e;
+                    minus[j] -= e;
+                    update.cell_system(kernel, points, plus, K_plus, f_plus);
+                    update.cell_system(kernel, points, minus, K_minus, f_minus);
+                    for (unsigned int i = 0; i < 8; ++i)
+                      worst =
+                        std::max(worst,
+                                 std::abs((f_plus[i] - f_minus[i]) / (2 * e) -
+                                          K(i, j)) /
+                                   largest);
+                  }
+                for (unsigned int i = 0; i < 8; ++i)
+                  for (unsigned int j = 0; j < 8; ++j)
+                    asymmetry = std::max(asymmetry,
+                                         std::abs(K(i, j) - K(j, i)) / largest);
+                ++cases;
+              }
+            deallog << (kinematics == Kinematics::small_strain ?
+                          "small strain, " :
+                          "finite strain, ")
+                    << name << (b_bar ? ", B-bar" : ", standard") << ": "
+                    << cases << " cells, " << yielded
+                    << " with yielding points, tangent = central differences "
+                       "(1e-6): "
+                    << (worst <= 1e-6 ? "yes" : "NO")
+                    << ", symmetric: " << (asymmetry <= 1e-10 ? "yes" : "no")
+                    << std::endl;
+          }
+    deallog.pop();
+  }
+
 } // namespace
 
 
@@ -933,4 +1052,5 @@ main()
 
   test_plane_strain_limits();
   test_tensor_functions(random);
+  test_cell_tangents(random);
 }
