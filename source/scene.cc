@@ -250,7 +250,7 @@ namespace bsmpm
       assembly->setup();
       if (constitutive_update)
         {
-          assembly->leave_material_to_points(true);
+          assembly->leave_material_to_points(&points);
           assembly->use_finite_strain(
             constitutive_update->kinematics() ==
             ConstitutiveUpdate::Kinematics::finite_strain);
@@ -823,8 +823,7 @@ namespace bsmpm
         // larger than that of zero is dropped (cantilever in finite
         // strain: 26 times in step 3).
         if (!(assembly->newton_system(
-                *constitutive_update, points, increment, d_a) <
-              10 * reference))
+                *constitutive_update, points, increment, d_a) < 10 * reference))
           {
             increment = 0;
             increment.update_ghost_values();

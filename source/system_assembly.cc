@@ -179,7 +179,7 @@ namespace bsmpm
 
     const Tensor<1, 2> body_force =
       load_factor * parts.material.density() * parts.gravity;
-    const bool has_body_force = body_force.norm() > 0 && !finite_strain;
+    const bool has_body_force = body_force.norm() > 0;
 
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
     FullMatrix<double>                   cell_matrix(n, n);
@@ -197,19 +197,22 @@ namespace bsmpm
         cell_matrix = 0;
         cell_rhs    = 0;
         internal    = 0;
-        if (!material_from_points)
+        const bool points_here =
+          material_from_points && material_points->holds_material(cell);
+        if (!points_here)
           {
             kernel.add_stiffness(m, cell_matrix);
             kernel.add_internal_force(m, internal);
           }
-        if (has_body_force)
+        // In finite strain the points carry the body force on their masses.
+        if (has_body_force && !(finite_strain && points_here))
           kernel.add_body_force(m, body_force, cell_rhs);
         cell_rhs -= internal;
 
         cell->get_dof_indices(dof_indices);
         // Material-point part of the force f^d of a prescribed displacement
         // (eq. 33): the regular stiffness times d^a.
-        if (prescribed && !material_from_points)
+        if (prescribed && !points_here)
           {
             for (unsigned int i = 0; i < n; ++i)
               da[i] = (*prescribed)(dof_indices[i]);

@@ -115,12 +115,20 @@ namespace bsmpm
     {
       return newton_residual;
     }
-    /** With @p yes, assemble() leaves out the material points' stiffness
-     * and internal force: a nonlinear model adds them per iteration. */
+    /**
+     * With @p points, assemble() leaves out the stiffness and internal
+     * force of the cells where @p points hold material: a nonlinear model
+     * adds them per iteration (ConstitutiveUpdate). A cell of the body
+     * that holds no point (a sliver the boundary has just cut off, given
+     * its exact moments and the neighbours' stress by CutCellQuadrature)
+     * keeps the elastic stiffness and that stress, as in a linear run:
+     * without them its outer vertices would hold nothing.
+     */
     void
-    leave_material_to_points(const bool yes)
+    leave_material_to_points(const MaterialPoints *points)
     {
-      material_from_points = yes;
+      material_points      = points;
+      material_from_points = points != nullptr;
     }
 
     /**
@@ -188,6 +196,7 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector  newton_residual;
     unsigned long long             yielding             = 0;
     bool                           material_from_points = false;
+    const MaterialPoints          *material_points      = nullptr;
     bool                           finite_strain        = false;
     /**
      * Builds the sparsity pattern and the matrix: the couplings of every
