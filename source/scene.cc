@@ -105,7 +105,10 @@ namespace bsmpm
       "elastic strain with the exponential map, Kirchhoff stress, point "
       "volumes det(F) V0, a pressure that follows the boundary within the "
       "load step (doc/finite-strain.md). Finite strain always uses Newton "
-      "iterations, also for linear elasticity, and needs plane strain.");
+      "iterations, also for linear elasticity, and needs plane strain. "
+      "Without boundary curves, a free closed curve round the body region "
+      "is added (Curve 1), so that the cut-cell quadrature integrates the "
+      "cells the moving points fill unevenly.");
     prm.leave_subsection();
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
@@ -171,6 +174,8 @@ namespace bsmpm
     newton.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
+    if (this->finite_strain())
+      enclose_body_region(prm);
     boundary_curves.parse_parameters(prm);
     neumann_loads.parse_parameters(prm);
     implicit_boundary.parse_parameters(prm);
@@ -270,6 +275,49 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
+  }
+
+
+
+  void
+  Scene::enclose_body_region(ParameterHandler &prm) const
+  {
+    // Points that move across cells leave full cells with uneven point
+    // sets and partly filled cells at the surface: integrated by the points
+    // alone, the stress of a column compressed by 38 % did not converge
+    // under refinement (L2_u 8.3e-2, 7.5e-2, 8.0e-2 for h = 0.5 .. 0.125).
+    // A closed curve round the body lets the cut-cell quadrature integrate
+    // those cells consistently (1.2e-3, 2.3e-4, 9.1e-5; doc/finite-strain.md).
+    prm.enter_subsection("Boundary curves");
+    for (unsigned int c = 1; c <= BoundaryCurves::max_curves; ++c)
+      {
+        prm.enter_subsection("Curve " + std::to_string(c));
+        const bool used = prm.get("Points") != "none";
+        prm.leave_subsection();
+        if (used)
+          {
+            prm.leave_subsection();
+            return;
+          }
+      }
+    // Tracking points about a cell apart on the longest side.
+    double longest = 0;
+    for (const auto &name : region.boundary_part_names())
+      {
+        const auto points = region.boundary_points(name, 129).points;
+        double     length = 0;
+        for (unsigned int i = 1; i < points.size(); ++i)
+          length += points[i].distance(points[i - 1]);
+        longest = std::max(longest, length);
+      }
+    const unsigned int n = std::max<unsigned int>(
+      2, std::ceil(longest / grid.min_cell_size() - 1e-9) + 1);
+    prm.enter_subsection("Curve 1");
+    prm.set("Points", "region edge");
+    prm.set("Edge", "boundary");
+    prm.set("Number of points", std::to_string(n));
+    prm.leave_subsection();
+    prm.leave_subsection();
   }
 
 

@@ -88,6 +88,12 @@ namespace bsmpm
     void
     setup();
     /** Throws if nothing holds the body against rigid motion. */
+    /** Finite strain without boundary curves: a free closed curve round
+     * the body region (Curve 1), so that the cut-cell quadrature follows
+     * the moving body. */
+    void
+    enclose_body_region(ParameterHandler &prm) const;
+
     void
     check_supports() const;
     void
