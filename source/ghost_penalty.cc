@@ -96,14 +96,42 @@ namespace bsmpm
     std::vector<double> quality(grid.triangulation().n_active_cells(), -1.);
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
-        if (!cell->is_locally_owned() ||
-            !(moments[cell->active_cell_index()].v > 0))
+        if (!cell->is_locally_owned())
           continue;
         cell->get_dof_indices(dofs);
         std::array<std::array<types::global_dof_index, 2>, 4> vertex_dofs;
         for (unsigned int i = 0; i < dofs.size(); ++i)
           vertex_dofs[fe.system_to_component_index(i).second]
                      [fe.system_to_component_index(i).first] = dofs[i];
+        if (!(moments[cell->active_cell_index()].v > 0))
+          {
+            // A cell without material whose DoFs are free (a support of
+            // both components crosses it, SystemAssembly::make_constraints)
+            // and one of whose vertices no material holds: a boundary that
+            // has moved into a cell that its points have left (a footing's
+            // base just above a grid line, the points of the sliver below
+            // it already across). Only the support's terms would hold that
+            // vertex, and they are not positive without material: the
+            // implicit boundary's band replaces a regular stiffness that is
+            // not there, Nitsche's consistency term has no material to
+            // bound it. Weak, quality 0: the ghost penalty ties the cell's
+            // field to its neighbours', so that the support acts on the
+            // extension of the material's field. A cell without material
+            // whose vertices all touch material needs nothing (and must not
+            // be penalised: it may be a gap between two bodies).
+            bool all_free = true, unheld = false;
+            for (const auto &d : vertex_dofs)
+              {
+                if (constraints.is_constrained(d[0]) &&
+                    constraints.is_constrained(d[1]))
+                  all_free = false;
+                else if (!(support(d[0]) > 0))
+                  unheld = true;
+              }
+            if (all_free && unheld)
+              quality[cell->active_cell_index()] = 0;
+            continue;
+          }
         double q = 1;
         for (const auto &d : vertex_dofs)
           {

@@ -97,7 +97,10 @@ namespace bsmpm
      * active_cell_index()), from its material moments @p moments: the least
      * quality of its vertices that @p constraints leave free, 1 if there is
      * none, and -1 for a cell without material (see the class
-     * documentation).
+     * documentation). A cell without material gets 0 instead if every
+     * vertex has a free DoF and one of them no material round it: its DoFs
+     * are free only because a support crosses it (a boundary that its
+     * points have left), and the penalty must hold them.
      */
     static std::vector<double>
     cell_qualities(const BackgroundGrid            &grid,
