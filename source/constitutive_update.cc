@@ -39,18 +39,6 @@ namespace bsmpm
           {particle.get_reference_location(), particle.get_properties()});
     }
 
-    /** A 2x2 tensor as the in-plane block of a 3x3 one (zz = @p zz). */
-    Tensor<2, 3>
-    embed(const Tensor<2, 2> &t, const double zz)
-    {
-      Tensor<2, 3> e;
-      for (unsigned int i = 0; i < 2; ++i)
-        for (unsigned int j = 0; j < 2; ++j)
-          e[i][j] = t[i][j];
-      e[2][2] = zz;
-      return e;
-    }
-
     /** The elastic strain stored in a point (zz included). */
     SymmetricTensor<2, 3>
     stored_elastic_strain(const ArrayView<const double> &props)
@@ -71,21 +59,84 @@ namespace bsmpm
       return Tensor<2, 2>({{F[0], F[1]}, {F[2], F[3]}});
     }
 
-    double
-    log_of(const double x)
+    /**
+     * An isotropic function y = f(X) of a symmetric 2x2 tensor (the
+     * in-plane block of a plane-strain tensor, whose zz direction is
+     * principal) by its closed-form eigenvalues, and its derivative. Both on
+     * the components (xx, yy, xy); the derivative as the matrix M with
+     * dy = M dX, M[r][c] = T_rc w_c, w = (1, 1, 2) (dX_xy stands for
+     * dX_xy and dX_yx). With the eigenprojections E_1, E_2:
+     *
+     *   T = f'(x_1) E_1 (x) E_1 + f'(x_2) E_2 (x) E_2
+     *       + rho (I - E_1 (x) E_1 - E_2 (x) E_2),
+     *   rho = (f(x_1) - f(x_2)) / (x_1 - x_2)
+     *
+     * (SpectralDecomposition::spin_modulus near equal eigenvalues). The
+     * plane-strain kinematics need only these, at a fraction of the cost of
+     * the three-dimensional decomposition.
+     */
+    template <typename F, typename DF>
+    void
+    in_plane_function(const Tensor<1, 3> &X,
+                      const F            &f,
+                      const DF           &df,
+                      Tensor<1, 3>       &y,
+                      Tensor<2, 3>       *derivative)
     {
-      return std::log(x);
+      const double m  = (X[0] + X[1]) / 2;
+      const double d  = (X[0] - X[1]) / 2;
+      const double r  = std::sqrt(d * d + X[2] * X[2]);
+      const double x1 = m + r, x2 = m - r;
+      // E_1 = (X - x_2 1) / (x_1 - x_2); for r = 0 any split will do.
+      Tensor<1, 3> E1, E2;
+      if (r > 0)
+        E1 =
+          Tensor<1, 3>({(d + r) / (2 * r), (r - d) / (2 * r), X[2] / (2 * r)});
+      else
+        E1 = Tensor<1, 3>({1., 0., 0.});
+      E2              = Tensor<1, 3>({1. - E1[0], 1. - E1[1], -E1[2]});
+      const double y1 = f(x1), y2 = f(x2);
+      y = y1 * E1 + y2 * E2;
+      if (derivative == nullptr)
+        return;
+      const double a1 = df(x1), a2 = df(x2);
+      const double rho =
+        SpectralDecomposition::spin_modulus(x1, x2, y1, y2, a1, a2);
+      static constexpr double w[3]        = {1., 1., 2.};
+      static constexpr double identity[3] = {1., 1., 0.5};
+      for (unsigned int r = 0; r < 3; ++r)
+        for (unsigned int c = 0; c < 3; ++c)
+          (*derivative)[r][c] =
+            ((a1 - rho) * E1[r] * E1[c] + (a2 - rho) * E2[r] * E2[c] +
+             (r == c ? rho * identity[r] : 0.)) *
+            w[c];
     }
-    double
-    inverse_of(const double x)
+
+    /** The in-plane block of a symmetric 3x3 tensor as (xx, yy, xy). */
+    Tensor<1, 3>
+    in_plane(const SymmetricTensor<2, 3> &t)
     {
-      return 1. / x;
+      return Tensor<1, 3>({t[0][0], t[1][1], t[0][1]});
     }
-    double
-    exp_of(const double x)
+
+    /** (xx, yy, xy) as a 2x2 tensor. */
+    Tensor<2, 2>
+    as_tensor(const Tensor<1, 3> &v)
     {
-      return std::exp(x);
+      return Tensor<2, 2>({{v[0], v[2]}, {v[2], v[1]}});
     }
+
+    /** The symmetric 2x2 tensor a b a^T as (xx, yy, xy). */
+    Tensor<1, 3>
+    push_forward(const Tensor<2, 2> &a, const Tensor<1, 3> &b)
+    {
+      const Tensor<2, 2> t = a * as_tensor(b) * transpose(a);
+      return Tensor<1, 3>({t[0][0], t[1][1], (t[0][1] + t[1][0]) / 2});
+    }
+
+    const auto log_of     = [](const double x) { return std::log(x); };
+    const auto inverse_of = [](const double x) { return 1. / x; };
+    const auto exp_of     = [](const double x) { return std::exp(x); };
   } // namespace
 
 
@@ -237,23 +288,23 @@ namespace bsmpm
     for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
       point.gradients[i] = f_inv_T * kernel.scalar_gradient(i, st);
 
-    // b_e,n = exp(2 eps_e,n); b_e^tr = f b_e,n f^T, f_zz = 1.
-    const SymmetricTensor<2, 3> b_n =
-      isotropic_tensor_function(2 * stored_elastic_strain(props),
-                                exp_of,
-                                exp_of)
-        .first;
-    const Tensor<2, 3>          f3 = embed(point.f, 1.);
-    const SymmetricTensor<2, 3> b_trial =
-      symmetrize(Tensor<2, 3>(f3 * Tensor<2, 3>(b_n) * transpose(f3)));
-    const auto [log_b, dlog_b] =
-      isotropic_tensor_function(b_trial, log_of, inverse_of);
-    for (unsigned int i = 0; i < 2; ++i)
-      for (unsigned int j = 0; j < 2; ++j)
-        point.trial_b[i][j] = b_trial[i][j];
-    point.log_derivative = dlog_b;
+    // b_e,n = exp(2 eps_e,n); b_e^tr = f b_e,n f^T. With f_zz = 1 the zz
+    // elastic strain is unchanged and zz stays a principal direction, so
+    // the in-plane block is all that the exponential and logarithm see.
+    const SymmetricTensor<2, 3> eps_n = stored_elastic_strain(props);
+    Tensor<1, 3>                b_n, log_b;
+    in_plane_function(2 * in_plane(eps_n), exp_of, exp_of, b_n, nullptr);
+    const Tensor<1, 3> b_trial = push_forward(point.f, b_n);
+    in_plane_function(
+      b_trial, log_of, inverse_of, log_b, &point.log_derivative);
+    point.trial_b = as_tensor(b_trial);
 
-    state.elastic_strain = 0.5 * log_b;
+    SymmetricTensor<2, 3> &e = state.elastic_strain;
+    e                        = SymmetricTensor<2, 3>();
+    e[0][0]                  = log_b[0] / 2;
+    e[1][1]                  = log_b[1] / 2;
+    e[0][1]                  = log_b[2] / 2;
+    e[2][2]                  = eps_n[2][2];
     // F-bar: f scaled by (det f_c / det f)^(1/3) (zz included), so that
     // ln det f is that of the centroid; in small strain this is B-bar.
     if (strain.use_b_bar)
@@ -325,10 +376,22 @@ namespace bsmpm
         n_yielded += response.yielded;
         const SymmetricTensor<2, 3> &tau = response.stress;
         const double                 c   = w / props[Property::det_F];
-        const SymmetricTensor<4, 3>  DL = response.tangent * kin.log_derivative;
-        const SymmetricTensor<2, 3>  D1 =
-          response.tangent * unit_symmetric_tensor<3>();
-        const auto N = Q1CellKernel::vertex_shape_values(point.st);
+        // d tau / d eps^tr on in-plane strains (rows and columns xx, yy,
+        // xy, the xy column counted twice) and D : 1.
+        static constexpr unsigned int index[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+        Tensor<2, 3>                  D;
+        Tensor<1, 3>                  D1;
+        for (unsigned int r = 0; r < 3; ++r)
+          {
+            const unsigned int i = index[r][0], j = index[r][1];
+            for (unsigned int c = 0; c < 3; ++c)
+              D[r][c] = response.tangent[i][j][index[c][0]][index[c][1]] *
+                        (c == 2 ? 2. : 1.);
+            D1[r] = response.tangent[i][j][0][0] +
+                    response.tangent[i][j][1][1] + response.tangent[i][j][2][2];
+          }
+        const Tensor<2, 3> DL = D * kin.log_derivative;
+        const auto         N  = Q1CellKernel::vertex_shape_values(point.st);
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int r = 0; r < 2; ++r)
             tau_g[i][r] =
@@ -341,21 +404,23 @@ namespace bsmpm
             // The unit increment of DoF b (component k) gives
             // delta b^tr = 2 sym(e_k (x) h), h = b^tr g_b, and
             // delta eps^tr = L : sym(e_k (x) h) (+ F-bar's volumetric part).
-            const unsigned int    k = kernel.component(b), o = 1 - k;
-            const Tensor<1, 2>    h = kin.trial_b * kin.gradients[b];
-            SymmetricTensor<2, 3> S;
-            S[k][k]                    = h[k];
-            S[k][o]                    = h[o] / 2;
-            SymmetricTensor<2, 3> dtau = DL * S;
+            const unsigned int k = kernel.component(b);
+            const Tensor<1, 2> h = kin.trial_b * kin.gradients[b];
+            // sym(e_k (x) h) as (xx, yy, xy).
+            const Tensor<1, 3> S = k == 0 ? Tensor<1, 3>({h[0], 0., h[1] / 2}) :
+                                            Tensor<1, 3>({0., h[1], h[0] / 2});
+            Tensor<1, 3>       dtau = DL * S;
             if (strain.use_b_bar)
               dtau += (strain.centroid_gradients[b][k] - kin.gradients[b][k]) /
                       3 * D1;
+            // Rows (xx, xy) and (xy, yy) of delta tau.
+            const Tensor<1, 2> row[2] = {Tensor<1, 2>({dtau[0], dtau[2]}),
+                                         Tensor<1, 2>({dtau[2], dtau[1]})};
             for (unsigned int a = 0; a < n; ++a)
               {
                 const unsigned int  i = kernel.component(a);
                 const Tensor<1, 2> &g = kin.gradients[a];
-                K(a, b) += c * (dtau[i][0] * g[0] + dtau[i][1] * g[1] -
-                                tau_g[b][i] * g[k]);
+                K(a, b) += c * (row[i] * g - tau_g[b][i] * g[k]);
               }
           }
       }
@@ -493,16 +558,15 @@ namespace bsmpm
                 // V = det(f) V_n; the strain is the logarithmic strain
                 // ln(F F^T) / 2 (MaterialPoints::move() leaves it alone).
                 props[Property::volume] *= det_f;
-                const Tensor<2, 3> F3 = embed(F, 1.);
-                const auto         log_strain =
-                  isotropic_tensor_function(symmetrize(
-                                              Tensor<2, 3>(F3 * transpose(F3))),
-                                            log_of,
-                                            inverse_of)
-                    .first;
-                props[Property::strain]     = log_strain[0][0] / 2;
-                props[Property::strain + 1] = log_strain[1][1] / 2;
-                props[Property::strain + 2] = log_strain[0][1] / 2;
+                Tensor<1, 3> log_strain;
+                in_plane_function(push_forward(F, Tensor<1, 3>({1., 1., 0.})),
+                                  log_of,
+                                  inverse_of,
+                                  log_strain,
+                                  nullptr);
+                props[Property::strain]     = log_strain[0] / 2;
+                props[Property::strain + 1] = log_strain[1] / 2;
+                props[Property::strain + 2] = log_strain[2] / 2;
               }
           }
       }

@@ -181,8 +181,9 @@ namespace bsmpm
       std::array<Tensor<1, 2>, 8> gradients;
       /** Trial b_e (in-plane block). */
       Tensor<2, 2> trial_b;
-      /** d ln(b_e^tr) / d b_e^tr. */
-      SymmetricTensor<4, 3> log_derivative;
+      /** d ln(b_e^tr) / d b_e^tr on in-plane tensors, as a matrix on the
+       * components (xx, yy, xy) (see InPlaneFunction). */
+      Tensor<2, 3> log_derivative;
     };
 
     /** f and the trial elastic strain (into @p state) of a point at @p st
