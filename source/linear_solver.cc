@@ -376,9 +376,13 @@ namespace bsmpm
         }
       else
         {
+          // Right preconditioning: the stopping test sees the true
+          // residual (left-preconditioned GMRES stopped with |b - A x| 18
+          // times |b| on the finite-strain cantilever at h = 0.375).
           SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
             control,
-            SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100));
+            SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+              100, /*right_preconditioning=*/true));
           gmres.solve(matrix, solution, rhs, *amg);
         }
     };
