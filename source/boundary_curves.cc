@@ -88,6 +88,38 @@ namespace bsmpm
         }
       return points;
     }
+    /** A parser of @p n_components expressions of x, y (separated by ';'),
+     * evaluated once so that syntax errors show here; @p message starts the
+     * error message. */
+    std::shared_ptr<FunctionParser<2>>
+    parse_function(const std::string &expressions,
+                   const unsigned int n_components,
+                   const std::string &message)
+    {
+      auto        function = std::make_shared<FunctionParser<2>>(n_components);
+      std::string problem;
+      try
+        {
+          function->initialize("x,y", expressions, {{"pi", numbers::PI}});
+          // The parser reports syntax errors only when it first evaluates,
+          // which would be in a loop over one process' cells: evaluate once
+          // here, on every process alike.
+          for (unsigned int c = 0; c < n_components; ++c)
+            function->value(Point<2>(), c);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream text;
+          e.print_info(text);
+          problem = Utilities::trim(text.str());
+        }
+      catch (...)
+        {
+          problem = "not understood";
+        }
+      AssertThrow(problem.empty(), ExcMessage(message + " (" + problem + ")."));
+      return function;
+    }
   } // namespace
 
 
@@ -149,34 +181,34 @@ namespace bsmpm
       {
         condition.kind =
           kind == "traction" ? Kind::traction : Kind::displacement;
-        condition.function = std::make_shared<FunctionParser<2>>(2);
-        std::string problem;
-        try
-          {
-            condition.function->initialize("x,y",
-                                           arguments,
-                                           {{"pi", numbers::PI}});
-            // The parser reports syntax errors only when it first
-            // evaluates, which would be in a loop over one process' cells:
-            // evaluate once here, on every process alike.
-            for (unsigned int c = 0; c < 2; ++c)
-              condition.function->value(Point<2>(), c);
-          }
-        catch (const ExceptionBase &e)
-          {
-            std::ostringstream message;
-            e.print_info(message);
-            problem = Utilities::trim(message.str());
-          }
-        catch (...)
-          {
-            problem = "not understood";
-          }
-        AssertThrow(problem.empty(),
-                    ExcMessage(where + ": '" + kind +
-                               "' needs two expressions of x and y "
-                               "separated by ';', got '" +
-                               arguments + "' (" + problem + ")."));
+        condition.function =
+          parse_function(arguments,
+                         2,
+                         where + ": '" + kind +
+                           "' needs two expressions of x and y separated by "
+                           "';', got '" +
+                           arguments + "'");
+      }
+    else if (kind == "normal" &&
+             arguments.substr(0, arguments.find(' ')) == "displacement")
+      {
+        // "normal displacement exact" or "normal displacement <un>".
+        condition.kind = Kind::normal_displacement;
+        const std::string value =
+          Utilities::trim(arguments.substr(std::string("displacement").size()));
+        AssertThrow(!value.empty(),
+                    ExcMessage(where +
+                               ": 'normal displacement' needs a value (an "
+                               "expression of x and y, the displacement along "
+                               "the outward normal) or 'exact'."));
+        if (value != "exact")
+          condition.function =
+            parse_function(value,
+                           1,
+                           where +
+                             ": 'normal displacement' needs one expression "
+                             "of x and y, got '" +
+                             value + "'");
       }
     else if (text == "exact traction")
       condition.kind = Kind::exact_traction;
@@ -191,7 +223,9 @@ namespace bsmpm
                   ExcMessage(where + ": unknown condition '" + text +
                              "'. Known: free, pressure <p>, traction <tx>; "
                              "<ty>, exact traction, fixed, roller, "
-                             "displacement exact, displacement <ux>; <uy>."));
+                             "displacement exact, displacement <ux>; <uy>, "
+                             "normal displacement exact, normal displacement "
+                             "<un>."));
     return condition;
   }
 
@@ -208,6 +242,24 @@ namespace bsmpm
         message << where << ": the " << kind_name() << " is (" << value[0]
                 << ", " << value[1] << ") at (" << x[0] << ", " << x[1]
                 << "), not a finite vector: check the expression.";
+        problem = message.str();
+      }
+    return value;
+  }
+
+
+
+  double
+  CurveCondition::scalar_function_value(const Point<2> &x,
+                                        std::string    &problem) const
+  {
+    const double value = function->value(x, 0);
+    if (problem.empty() && !std::isfinite(value))
+      {
+        std::ostringstream message;
+        message << where << ": the " << kind_name() << " is " << value
+                << " at (" << x[0] << ", " << x[1]
+                << "), not a finite number: check the expression.";
         problem = message.str();
       }
     return value;
@@ -246,6 +298,8 @@ namespace bsmpm
           return "roller";
         case Kind::displacement:
           return "displacement";
+        case Kind::normal_displacement:
+          return "normal displacement";
       }
     return "";
   }
@@ -413,17 +467,14 @@ namespace bsmpm
     prm.leave_subsection();
     for (const auto &curve : curves)
       for (const auto &condition : curve.conditions)
-        AssertThrow(has_exact_solution ||
-                      (condition.kind != CurveCondition::Kind::exact_traction &&
-                       (condition.kind != CurveCondition::Kind::displacement ||
-                        condition.function)),
-                    ExcMessage(
-                      condition.where + ": '" + condition.kind_name() +
-                      (condition.kind == CurveCondition::Kind::displacement ?
-                         " exact" :
-                         "") +
-                      "' needs an exact solution in the 'Exact "
-                      "solution' section (its Name is none)."));
+        AssertThrow(
+          has_exact_solution ||
+            (condition.kind != CurveCondition::Kind::exact_traction &&
+             (!condition.prescribes_displacement() || condition.function)),
+          ExcMessage(condition.where + ": '" + condition.kind_name() +
+                     (condition.prescribes_displacement() ? " exact" : "") +
+                     "' needs an exact solution in the 'Exact "
+                     "solution' section (its Name is none)."));
   }
 
 

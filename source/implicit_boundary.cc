@@ -131,6 +131,22 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector                    &rhs)
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    // Every process holds every curve: the check is collective.
+    if (formulation != Formulation::consistent)
+      for (const auto &curve : curves.get_curves())
+        if (curve.dirichlet_method ==
+            BoundaryCurve::DirichletMethod::implicit_boundary)
+          for (const auto &condition : curve.conditions)
+            AssertThrow(
+              condition.kind != CurveCondition::Kind::normal_displacement,
+              ExcMessage(
+                condition.where +
+                ": 'normal displacement' is implemented for the consistent "
+                "formulation of the implicit boundary method only (the "
+                "frame and paper forms impose a displacement through nodal "
+                "values fitted to both of its components). Set 'Implicit "
+                "boundary/Formulation = consistent' or the curve's "
+                "'Dirichlet method = nitsche'."));
     points.clear();
     last_increment_factor = increment_factor;
     last_exact            = exact;
@@ -160,10 +176,11 @@ namespace bsmpm
             for (unsigned int i = 0; i < n; ++i)
               da[i] = (*prescribed)(dof_indices[i]);
 
-          const bool roller = condition->kind == CurveCondition::Kind::roller;
-          const bool imposes =
-            formulation == Formulation::consistent &&
-            condition->kind == CurveCondition::Kind::displacement;
+          // A roller and a prescribed normal displacement hold the normal
+          // component only.
+          const bool roller  = condition->holds_normal_component_only();
+          const bool imposes = formulation == Formulation::consistent &&
+                               condition->prescribes_displacement();
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
           cell_matrix                = 0;
@@ -173,7 +190,8 @@ namespace bsmpm
             {
               const double       u = piece.u_begin + along.point(q)[0] * du;
               const Point<2>     c = spline.value(u);
-              const Tensor<1, 2> normal = -spline.outward_normal(u); // inward
+              const Tensor<1, 2> outward = spline.outward_normal(u);
+              const Tensor<1, 2> normal  = -outward; // inward
               const Tensor<1, 2> tangent({-normal[1], normal[0]});
               const double       ds =
                 spline.derivative(u).norm() * du * along.weight(q);
@@ -192,13 +210,17 @@ namespace bsmpm
               const Voigt sigma_previous = curve.stress_at(piece.segment, u);
               // The prescribed increment g on the boundary and its
               // derivative along it (central differences along the curve).
+              // A normal displacement is g = g_n n with n the normal at c
+              // (the roller's terms treat n as constant across the band and
+              // along the piece).
               Tensor<1, 2> g, dg_dt;
               if (imposes)
                 {
                   const double   tau = 1e-6 * du;
                   const Point<2> a   = spline.value(u - tau),
                                  b   = spline.value(u + tau);
-                  g = increment_factor * prescribed_value(*condition, exact, c);
+                  g                  = increment_factor *
+                      prescribed_value(*condition, exact, c, outward);
                   if (problem.empty() &&
                       !(std::isfinite(g[0]) && std::isfinite(g[1])))
                     problem = condition->where +
@@ -207,8 +229,8 @@ namespace bsmpm
                               std::to_string(c[0]) + ", " +
                               std::to_string(c[1]) + "): check the expression.";
                   dg_dt = increment_factor *
-                          (prescribed_value(*condition, exact, b) -
-                           prescribed_value(*condition, exact, a)) /
+                          (prescribed_value(*condition, exact, b, outward) -
+                           prescribed_value(*condition, exact, a, outward)) /
                           ((b - a) * tangent);
                 }
 
@@ -257,8 +279,9 @@ namespace bsmpm
                       const Voigt sigma = sigma_previous + C * strain_a;
                       for (unsigned int i = 0; i < n; ++i)
                         cell_rhs[i] -= w * B2[i] * sigma;
-                      // u = w - (1 - D)(w(c) - g): the band strain of g,
-                      // Delta_g, enters the energy like a prescribed strain.
+                      // u = w - (1 - D) P (w(c) - g), P g = g: the band
+                      // strain of g, Delta_g, enters the energy like a
+                      // prescribed strain.
                       if (imposes)
                         {
                           const Voigt sigma_g =
@@ -334,14 +357,20 @@ namespace bsmpm
   Tensor<1, 2>
   ImplicitBoundary::prescribed_value(const CurveCondition &condition,
                                      const ExactSolution  *exact,
-                                     const Point<2>       &x)
+                                     const Point<2>       &x,
+                                     const Tensor<1, 2>   &outward_normal)
   {
+    AssertThrow(condition.function || exact != nullptr,
+                ExcMessage("Boundary curves: '" + condition.kind_name() +
+                           " exact' needs an exact solution in the 'Exact "
+                           "solution' section."));
+    if (condition.kind == CurveCondition::Kind::normal_displacement)
+      return (condition.function ? condition.function->value(x, 0) :
+                                   exact->displacement(x) * outward_normal) *
+             outward_normal;
     if (condition.function)
       return Tensor<1, 2>(
         {condition.function->value(x, 0), condition.function->value(x, 1)});
-    AssertThrow(exact != nullptr,
-                ExcMessage("Boundary curves: 'displacement exact' needs an "
-                           "exact solution in the 'Exact solution' section."));
     return exact->displacement(x);
   }
 
@@ -414,7 +443,10 @@ namespace bsmpm
             curve.spline->derivative(u).norm() * du * gauss.weight(q);
           const Point<2>     st = grid.local_coordinates(x, piece.cell);
           const Tensor<1, 2> ua =
-            factor * prescribed_value(condition, exact, x);
+            factor * prescribed_value(condition,
+                                      exact,
+                                      x,
+                                      curve.spline->outward_normal(u));
           for (unsigned int i = 0; i < n; ++i)
             {
               const Tensor<1, 2> Ni = kernel.shape_value(i, st);
@@ -499,7 +531,10 @@ namespace bsmpm
             curve.spline->derivative(u).norm() * du * gauss.weight(q);
           const Tensor<1, 2> misfit =
             kernel.displacement(da, grid.local_coordinates(x, piece.cell)) -
-            factor * prescribed_value(condition, exact, x);
+            factor * prescribed_value(condition,
+                                      exact,
+                                      x,
+                                      curve.spline->outward_normal(u));
           error2 += misfit.norm_square() * ds;
           length += ds;
         }
@@ -583,16 +618,16 @@ namespace bsmpm
     if (formulation == Formulation::consistent)
       {
         Tensor<1, 2> w_b = field(foot);
-        if (nearest->kind == CurveCondition::Kind::displacement)
+        if (nearest->prescribes_displacement())
           w_b -= last_increment_factor *
-                 prescribed_value(*nearest, last_exact, foot);
-        if (nearest->kind == CurveCondition::Kind::roller)
+                 prescribed_value(*nearest, last_exact, foot, -n_min);
+        if (nearest->holds_normal_component_only())
           w -= (1 - D) * (w_b * n_min) * n_min;
         else
           w -= (1 - D) * w_b;
         return D;
       }
-    if (nearest->kind == CurveCondition::Kind::roller)
+    if (nearest->holds_normal_component_only())
       w -= (1 - D) * (w * n_min) * n_min;
     else
       w *= D;

@@ -88,7 +88,9 @@ namespace bsmpm
           if (cell == grid.dof_handler().end())
             continue;
 
-          const bool roller = condition->kind == CurveCondition::Kind::roller;
+          // A roller and a prescribed normal displacement hold the normal
+          // component only.
+          const bool          roller = condition->holds_normal_component_only();
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
           cell_matrix                = 0;
@@ -123,12 +125,22 @@ namespace bsmpm
               const Tensor<1, 2> reaction =
                 project(traction(curve.stress_at(piece.segment, u), nv));
 
+              // The prescribed increment; for a normal displacement
+              // g = g_n n, so that the projected terms give
+              // (u . n - g_n) (v . n).
               Tensor<1, 2> g;
               if (condition->kind == CurveCondition::Kind::displacement)
                 g =
                   increment_factor * (condition->function ?
                                         condition->function_value(x, problem) :
                                         exact->displacement(x));
+              else if (condition->kind ==
+                       CurveCondition::Kind::normal_displacement)
+                g = increment_factor *
+                    (condition->function ?
+                       condition->scalar_function_value(x, problem) :
+                       exact->displacement(x) * nv) *
+                    nv;
               for (unsigned int i = 0; i < n; ++i)
                 cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
                                      beta * value[i] * g);

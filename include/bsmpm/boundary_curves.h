@@ -32,7 +32,11 @@ namespace bsmpm
    * - exact traction: sigma(x) n from the scene's exact solution;
    * - fixed: u = 0; roller: u . n = 0 (n the normal of the current curve);
    * - displacement exact: u = u_exact(x); displacement <ux>; <uy>: u given
-   *   as expressions of x, y.
+   *   as expressions of x, y;
+   * - normal displacement <un>: u . n = un (an expression of x, y) with n
+   *   the outward normal of the body on the current curve, the tangential
+   *   component free (a smooth rigid footing pushed into the body has
+   *   un < 0); normal displacement exact: u . n = u_exact(x) . n.
    * Loads and prescribed displacements are scaled by the load factor of the
    * step. Supports are imposed by the curve's Dirichlet method (implicit
    * boundary method or Nitsche's method).
@@ -47,15 +51,18 @@ namespace bsmpm
       exact_traction,
       fixed,
       roller,
-      displacement
+      displacement,
+      normal_displacement
     };
 
     Kind         kind          = Kind::free;
     unsigned int first_segment = 0;
     unsigned int end_segment   = numbers::invalid_unsigned_int;
     double       pressure      = 0;
-    /** Traction of "traction", or displacement of "displacement <ux>; <uy>"
-     * (nullptr for "displacement exact"). */
+    /** Traction of "traction", displacement of "displacement <ux>; <uy>"
+     * (two components) or normal displacement of "normal displacement <un>"
+     * (one component); nullptr for "displacement exact" and "normal
+     * displacement exact". */
     std::shared_ptr<FunctionParser<2>> function;
     /** The parameter that gave the condition, for messages. */
     std::string where;
@@ -65,6 +72,11 @@ namespace bsmpm
      * parameter and the point (see ParameterTools::throw_if_any()). */
     Tensor<1, 2>
     function_value(const Point<2> &x, std::string &problem) const;
+
+    /** As function_value(), for the one component of "normal displacement
+     * <un>". */
+    double
+    scalar_function_value(const Point<2> &x, std::string &problem) const;
 
     /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
     static CurveCondition
@@ -86,10 +98,27 @@ namespace bsmpm
     is_support() const
     {
       return kind == Kind::fixed || kind == Kind::roller ||
-             kind == Kind::displacement;
+             kind == Kind::displacement || kind == Kind::normal_displacement;
     }
 
-    /** Whether the support holds both components (not a roller). */
+    /** Whether the support holds the normal component only (a roller or a
+     * prescribed normal displacement). */
+    bool
+    holds_normal_component_only() const
+    {
+      return kind == Kind::roller || kind == Kind::normal_displacement;
+    }
+
+    /** Whether the support prescribes a displacement (both components or
+     * the normal one). */
+    bool
+    prescribes_displacement() const
+    {
+      return kind == Kind::displacement || kind == Kind::normal_displacement;
+    }
+
+    /** Whether the support holds both components (not a roller, not a
+     * prescribed normal displacement). */
     bool
     holds_both_components() const
     {

@@ -31,7 +31,9 @@ namespace bsmpm
    * D the D-function of eq. 20, rising from 0 on the curve to 1 at the inner
    * edge of a band of width delta:
    * - fixed (and prescribed displacement): P = D I;
-   * - roller: P = I + (D - 1) n n^T, so only the normal component is held
+   * - roller (and, consistent formulation only, a prescribed normal
+   *   displacement): P = I + (D - 1) n n^T, so only the normal component is
+   *   held
    *   (method-notes Sec. 5: the boundary-frame form, exact on inclined
    *   boundaries). The paper's form with the rotation J_T of eq. 26 is
    *   available as "Roller form = paper".
@@ -95,7 +97,9 @@ namespace bsmpm
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs);
 
-    /** Whether any IBM support prescribes a displacement. */
+    /** Whether any IBM support prescribes a displacement (both
+     * components: a normal displacement is imposed by the consistent
+     * formulation only, which needs no fit). */
     static bool
     prescribes_displacement(const BoundaryCurves &curves);
 
@@ -152,11 +156,15 @@ namespace bsmpm
     }
 
   private:
-    /** The value of u^a of @p condition at @p x. */
+    /** The value of u^a of @p condition at @p x: the displacement, or for
+     * a normal displacement u_n n with n = @p outward_normal (the curve's
+     * outward normal, at x or at the boundary point the caller holds it
+     * constant from). */
     static Tensor<1, 2>
     prescribed_value(const CurveCondition &condition,
                      const ExactSolution  *exact,
-                     const Point<2>       &x);
+                     const Point<2>       &x,
+                     const Tensor<1, 2>   &outward_normal);
 
     double       relative_band_width = 1e-2;
     unsigned int points_along        = 2;

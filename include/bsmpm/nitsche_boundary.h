@@ -28,7 +28,8 @@ namespace bsmpm
    *   - int (sigma(u) n) . v - int (sigma(v) n) . (u - g)
    *   + beta int (u - g) . v,            beta = gamma E / h,
    *
-   * with every product projected on n for a roller. In the incremental form
+   * with every product projected on n for a roller and for a prescribed
+   * normal displacement (g = g_n n). In the incremental form
    * of a load step, u - g is the increment and the traction sigma_n n of the
    * previous steps, read from the curve's points, enters the right-hand
    * side: it is the support's reaction so far.

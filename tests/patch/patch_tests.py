@@ -8,7 +8,15 @@ layout a user would pick (per cell 1..8, a lattice, cell centroids):
 
   (a) pressure 8 kPa on one side, rollers on the other three (the lower left
       corner of the square stays put);
-  (b) a linear displacement field imposed on the whole boundary.
+  (b) a linear displacement field imposed on the whole boundary;
+  (c) rollers on two adjacent sides (bottom, left) and a prescribed normal
+      displacement on the other two (`normal displacement <un>` on the
+      right, un an expression of x, y: the normal component u . n of a
+      uniform strain with the square's own axes as principal directions,
+      outward normal; `normal displacement exact` on the top): the
+      tangential components are free on all four sides. Three layouts
+      (per cell 2, lattice, cell centroid): the cases above cover the
+      others, and every run costs 1.5 s in a Debug build.
 
 The supports by the implicit boundary method (delta/h = 1e-6) or by
 Nitsche's method. The exact stress is constant, so the discrete one must be
@@ -41,11 +49,27 @@ def scene(angle, layout, case, method, directory):
                 cy + math.sin(a) * x + math.cos(a) * y)
 
     lower_left = corner(-0.05, -0.05)
+    cos_a, sin_a = math.cos(a), math.sin(a)
     if case == "pressure":
         # Rollers on three sides: strain only along the square's own y.
         stress = (-NU / (1 - NU) * P, -P, 0.0)
         conditions = {"top": "pressure 8000", "bottom": "roller",
                       "right": "roller", "left": "roller"}
+    elif case == "normal":
+        # Principal stresses along the square's axes (rollers carry no
+        # shear). On the right side (outward normal (cos a, sin a)),
+        # u . n = eps_xx (x' - x'_0) with x' the coordinate along the
+        # square's x axis and x'_0 that of the fixed lower left corner: an
+        # expression of the current position, as the exact solution is
+        # (a constant would strain the second load step's longer square
+        # less).
+        stress = (-3000.0, 5000.0, 0.0)
+        eps_xx = (1 + NU) / E * ((1 - NU) * stress[0] - NU * stress[1])
+        un = (f"{eps_xx!r} * ((x - {lower_left[0]!r}) * {cos_a!r} + "
+              f"(y - {lower_left[1]!r}) * {sin_a!r})")
+        conditions = {"bottom": "roller", "left": "roller",
+                      "right": f"normal displacement {un}",
+                      "top": "normal displacement exact"}
     else:
         stress = (-3000.0, 5000.0, 2000.0)
         conditions = {side: "displacement exact"
@@ -124,14 +148,16 @@ def main():
     bound = 1e-8 if args.method == "ibm" else 1e-10
     layouts = [f"per cell {n}" for n in range(1, 9)] + ["lattice",
                                                        "cell centroid"]
+    normal_layouts = ["per cell 2", "lattice", "cell centroid"]
     failures, worst = [], 0.0
     with tempfile.TemporaryDirectory() as tmp:
         prm = os.path.join(tmp, "patch.prm")
         out = os.path.join(tmp, "output")
         for angle in [float(a) for a in args.angles.split(",")]:
-            for case in ("pressure", "displacement"):
+            for case in ("pressure", "displacement", "normal"):
                 row = []
-                for layout in layouts:
+                for layout in (layouts if case != "normal" else
+                               normal_layouts):
                     with open(prm, "w") as f:
                         f.write(scene(angle, layout, case, args.method, out))
                     run = subprocess.run([args.bsmpm, prm],
@@ -153,7 +179,8 @@ def main():
                                         f"R_sigma {error:.2e} > {bound:.0e}")
                 print(f"{angle:4.0f} deg {case:12s} " + " ".join(row),
                       flush=True)
-    print(f"layouts: {', '.join(layouts)}")
+    print(f"layouts: {', '.join(layouts)} (normal: "
+          f"{', '.join(normal_layouts)})")
     print(f"worst R_sigma {worst:.2e} (bound {bound:.0e})")
     for failure in failures:
         print("FAILED:", failure)
