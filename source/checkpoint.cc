@@ -24,7 +24,7 @@ namespace boost
     {
       ar &s.number &s.load_factor &s.solver &s.iterations &s.refinement_steps &s
         .relative_residual &s.n_active_cells &s.increments &s.n_yielded &s
-        .newton_residuals &s.newton_corrections;
+        .newton_residuals &s.newton_corrections &s.quantities;
     }
 
     template <class Archive>
@@ -46,7 +46,7 @@ namespace bsmpm
 
     /** First line of every archive: what it is and in which format. */
     const std::string  magic   = "bsmpm checkpoint";
-    const unsigned int version = 3;
+    const unsigned int version = 4;
 
     /** What both archives start with, checked before anything else is
      * read. */

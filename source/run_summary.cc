@@ -85,7 +85,15 @@ namespace bsmpm
               out << (k ? ", " : "") << json_number(s.newton_corrections[k]);
             out << "]";
           }
-        out << "}";
+        out << ", \"quantities\": {";
+        bool first = true;
+        for (const auto &[key, value] : s.quantities)
+          {
+            out << (first ? "" : ", ") << json_string(key) << ": "
+                << json_number(value);
+            first = false;
+          }
+        out << "}}";
       }
     out << (steps.empty() ? "],\n" : "\n  ],\n");
     write_map(out, "errors", errors);

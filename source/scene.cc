@@ -725,6 +725,7 @@ namespace bsmpm
 
         if (constitutive_update)
           run_summary.quantities["yielded_points"] = record.n_yielded;
+        record.quantities = run_summary.quantities;
         run_summary.steps.push_back(record);
         if (pcout.is_active())
           run_summary.print_step(pcout.get_stream(), record);

@@ -31,6 +31,9 @@ namespace bsmpm
       unsigned long long  n_yielded  = 0;
       std::vector<double> newton_residuals;
       std::vector<double> newton_corrections;
+      /** The scene's quantities after this step (support reactions, the
+       * probe, ...): load-displacement curves. */
+      std::map<std::string, double> quantities;
     };
 
     std::string        scene;
