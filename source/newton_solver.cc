@@ -1,5 +1,6 @@
 #include <bsmpm/newton_solver.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace bsmpm
@@ -52,7 +53,8 @@ namespace bsmpm
     const double                                            reference,
     const std::function<double()>                          &residual,
     const std::function<std::pair<double, unsigned int>()> &correct,
-    const std::function<void(const double)>                &step_back) const
+    const std::function<void(const double)>                &step_back,
+    const std::function<double()>                          &slope) const
   {
     Result       result;
     const double initial = reference;
@@ -85,14 +87,72 @@ namespace bsmpm
         const auto [correction, linear_iterations] = correct();
         iteration.relative_correction              = correction;
         iteration.linear_iterations                = linear_iterations;
-        // Backtracking: halve a correction that does not lower |R|.
+        // g(0) = dx . R(x): positive when dx descends the potential (always
+        // for a symmetric positive definite tangent).
+        const double g0       = slope ? slope() : 0.;
         const double previous = norm;
         norm                  = residual();
-        for (unsigned int l = 0; l < line_search && !(norm < previous); ++l)
+        if (g0 > 0 && line_search > 0)
           {
-            iteration.step_length /= 2;
-            step_back(iteration.step_length);
-            norm = residual();
+            // Line search on the potential: g(a) = dx . R(x + a dx) is
+            // minus its derivative along dx, decreasing in a where the
+            // potential is convex. Accept a step where |g| has fallen
+            // to half of g(0) (or the full step while g stays positive:
+            // the potential still falls there); else the zero of g between
+            // the last step with g > 0 and the last with g < 0 by regula
+            // falsi (Illinois), kept a tenth of the bracket from its ends.
+            double a = 1, g = slope();
+            double lo = 0, g_lo = g0, hi = -1, g_hi = 0;
+            int    side = 0;
+            for (unsigned int l = 0; l < line_search; ++l)
+              {
+                if (std::isfinite(norm) && std::isfinite(g) &&
+                    (std::abs(g) <= 0.5 * g0 || (g > 0 && hi < 0)))
+                  break;
+                if (std::isfinite(norm) && std::isfinite(g) && g > 0)
+                  {
+                    lo   = a;
+                    g_lo = g;
+                    if (side == 1)
+                      g_hi /= 2;
+                    side = 1;
+                  }
+                else
+                  {
+                    hi = a;
+                    if (std::isfinite(norm) && std::isfinite(g))
+                      {
+                        g_hi = g;
+                        if (side == -1)
+                          g_lo /= 2;
+                        side = -1;
+                      }
+                    else
+                      {
+                        // Not finite: bisect.
+                        g_hi = -g_lo;
+                        side = 0;
+                      }
+                  }
+                double next = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+                next =
+                  std::clamp(next, lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
+                step_back(a - next);
+                a    = next;
+                norm = residual();
+                g    = slope();
+              }
+            iteration.step_length = a;
+          }
+        else
+          {
+            // Backtracking: halve a correction that does not lower |R|.
+            for (unsigned int l = 0; l < line_search && !(norm < previous); ++l)
+              {
+                iteration.step_length /= 2;
+                step_back(iteration.step_length);
+                norm = residual();
+              }
           }
         result.iterations.push_back(iteration);
       }

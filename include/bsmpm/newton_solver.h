@@ -21,12 +21,24 @@ namespace bsmpm
    *   increment and returns |R|;
    * - correct(): solves K_T dx = R, adds dx to the increment and returns
    *   (|dx| / |x|, linear iterations);
-   * - step_back(alpha): replaces the last correction dx by alpha dx.
+   * - step_back(alpha): moves the increment by -alpha dx, dx the last
+   *   correction (alpha may be negative);
+   * - slope() (optional): dx . R at the current increment, R as the last
+   *   residual() assembled it.
    *
-   * A correction that does not lower |R| is shortened by halving (a
-   * backtracking line search on |R|, at most 'Line search steps' times):
-   * where many points change between elastic and plastic within one
-   * iteration, the full Newton step can overshoot.
+   * Where many points change between elastic and plastic within one
+   * iteration, the full Newton step can overshoot: it is shortened by a
+   * line search of at most 'Line search steps' evaluations. With slope()
+   * the search is on the potential whose gradient is -R (small strain,
+   * associated flow: the incremental problem minimises a convex potential):
+   * g(a) = dx . R(x + a dx) is minus the derivative of the potential along
+   * dx and falls with a, and a step is accepted where |g(a)| <= g(0) / 2
+   * (the full step where g(1) > 0); its zero is found by regula falsi. A
+   * decrease of |R| is no test of a step: near a limit load |R| along dx
+   * can fall where the potential has long risen again, and such steps
+   * stall the iterations (doc/newton.md). Without slope(), or where
+   * g(0) <= 0 (an unsymmetric or indefinite tangent), a correction that
+   * does not lower |R| is halved.
    */
   class NewtonSolver
   {
@@ -65,7 +77,8 @@ namespace bsmpm
     solve(const double                                            reference,
           const std::function<double()>                          &residual,
           const std::function<std::pair<double, unsigned int>()> &correct,
-          const std::function<void(const double)> &step_back) const;
+          const std::function<void(const double)>                &step_back,
+          const std::function<double()> &slope = {}) const;
 
     /** How many times a load increment may be halved. */
     unsigned int
