@@ -2,6 +2,7 @@
 
 #include <bsmpm/constitutive_update.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -484,6 +485,17 @@ namespace bsmpm
     ConstitutiveState                    state;
     unsigned long long                   n_yielded = 0;
     const bool finite = point_kinematics == Kinematics::finite_strain;
+    // The 2x2 blocks of the vertices in the points' tangent with their
+    // algorithmic (a) and elastic (e) tangents: K_xx, K_yy on the vertex's
+    // two DoFs, K_xy on its first (support_stiffness_ratios()).
+    const MPI_Comm                             comm = grid.mpi_communicator();
+    LinearAlgebra::distributed::Vector<double> diagonal_a(
+      grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    LinearAlgebra::distributed::Vector<double> diagonal_e(diagonal_a),
+      off_a(diagonal_a), off_e(diagonal_a);
+    const Tensor<2, 4>          D_e = voigt_tangent(model.elastic_tangent());
+    std::array<Voigt, n>        B_block;
+    std::array<Tensor<1, 4>, n> B_bar_block;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned() ||
@@ -529,6 +541,33 @@ namespace bsmpm
                   }
                 response = respond(props, de, state);
               }
+            if (has_material && props[Property::volume] > 0.)
+              {
+                const double w = quadrature_weights ? props[Property::weight] :
+                                                      props[Property::volume];
+                strain_columns(kernel, strain, st, B_block, B_bar_block);
+                const Tensor<2, 4> D = voigt_tangent(response.tangent);
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    const Tensor<1, 4> DB  = D * B_bar_block[i];
+                    const Tensor<1, 4> DeB = D_e * B_bar_block[i];
+                    diagonal_a(dof_indices[i]) += w * (B_bar_block[i] * DB);
+                    diagonal_e(dof_indices[i]) += w * (B_bar_block[i] * DeB);
+                    if (kernel.component(i) == 0)
+                      for (unsigned int j = 0; j < n; ++j)
+                        if (kernel.component(j) == 1 &&
+                            kernel.vertex(j) == kernel.vertex(i))
+                          {
+                            // The symmetric part (unsymmetric tangents).
+                            off_a(dof_indices[i]) +=
+                              w *
+                              (B_bar_block[j] * DB +
+                               B_bar_block[i] * (D * B_bar_block[j])) /
+                              2;
+                            off_e(dof_indices[i]) += w * (B_bar_block[j] * DeB);
+                          }
+                  }
+              }
             const auto &eps                     = state.elastic_strain;
             props[Property::elastic_strain]     = eps[0][0];
             props[Property::elastic_strain + 1] = eps[1][1];
@@ -570,6 +609,52 @@ namespace bsmpm
               }
           }
       }
+    for (auto *v : {&diagonal_a, &diagonal_e, &off_a, &off_e})
+      {
+        v->compress(VectorOperation::add);
+        v->update_ghost_values();
+      }
+    stiffness_ratio.reinit(diagonal_a);
+    const auto smallest_eigenvalue =
+      [](const double a, const double b, const double c) {
+        // Of [[a, c], [c, b]].
+        return (a + b) / 2 - std::sqrt((a - b) * (a - b) / 4 + c * c);
+      };
+    std::vector<types::global_dof_index> vertex_dofs(n);
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        cell->get_dof_indices(vertex_dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          if (kernel.component(i) == 0)
+            for (unsigned int j = 0; j < n; ++j)
+              if (kernel.component(j) == 1 &&
+                  kernel.vertex(j) == kernel.vertex(i))
+                {
+                  const auto   x = vertex_dofs[i], y = vertex_dofs[j];
+                  const double elastic =
+                    smallest_eigenvalue(diagonal_e(x), diagonal_e(y), off_e(x));
+                  const double held =
+                    smallest_eigenvalue(diagonal_a(x), diagonal_a(y), off_a(x));
+                  // Exactly 1 where the sums are the same (every point
+                  // elastic); nothing held: 1 as well (no material). A
+                  // vertex that a prescribed displacement moves (a
+                  // footing's base crosses its cells) is held by it.
+                  const bool supported =
+                    prescribed != nullptr &&
+                    ((*prescribed)(x) != 0. || (*prescribed)(y) != 0.);
+                  const double ratio =
+                    (elastic > 0 && held != elastic && !supported) ?
+                      std::clamp(held / elastic, 0., 1.) :
+                      1.;
+                  if (grid.locally_owned_dofs().is_element(x))
+                    stiffness_ratio(x) = ratio;
+                  if (grid.locally_owned_dofs().is_element(y))
+                    stiffness_ratio(y) = ratio;
+                }
+      }
+    stiffness_ratio.update_ghost_values();
     return Utilities::MPI::sum(n_yielded, grid.mpi_communicator());
   }
 } // namespace bsmpm

@@ -52,9 +52,11 @@ namespace bsmpm
 
 
   std::vector<double>
-  GhostPenalty::cell_qualities(const BackgroundGrid            &grid,
-                               const std::vector<CellMoments>  &moments,
-                               const AffineConstraints<double> &constraints)
+  GhostPenalty::cell_qualities(
+    const BackgroundGrid                             &grid,
+    const std::vector<CellMoments>                   &moments,
+    const AffineConstraints<double>                  &constraints,
+    const LinearAlgebra::distributed::Vector<double> *stiffness_ratio)
   {
     const MPI_Comm comm = grid.mpi_communicator();
     const double   area = grid.cell_size()[0] * grid.cell_size()[1];
@@ -89,6 +91,13 @@ namespace bsmpm
             }
       }
     support.compress(VectorOperation::add);
+    // Nonlinear material: the stiffness that the points keep round each
+    // vertex (ConstitutiveUpdate::support_stiffness_ratios()): a vertex held
+    // by perfectly plastic points that flow in the one direction in which
+    // they would hold it is not held, whatever its geometric support.
+    if (stiffness_ratio != nullptr)
+      for (const auto i : grid.locally_owned_dofs())
+        support(i) *= (*stiffness_ratio)(i);
     support.update_ghost_values();
     // Four full cells: 4 (rx + 1 / rx) / 3.
     const double full = 4 * (rx + 1 / rx) / 3;

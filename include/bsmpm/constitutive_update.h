@@ -126,6 +126,29 @@ namespace bsmpm
            const LinearAlgebra::distributed::Vector<double> &increment,
            const LinearAlgebra::distributed::Vector<double> *prescribed) const;
 
+    /**
+     * How much of its elastic stiffness the material keeps round each grid
+     * vertex in the state that the last commit() stored, by DoF (both
+     * DoFs of a vertex hold its value, with ghost values); nullptr before
+     * the first commit(). For vertex v with DoFs v_x, v_y it is
+     *
+     *   rho_v = lambda_min(K_vv(D)) / lambda_min(K_vv(D_e)),
+     *
+     * K_vv(D) = sum_p w_p B_v,p^T D B_v,p the 2x2 block of v in the
+     * tangent of the points round v, with their algorithmic tangents D_p
+     * at the end of the step, and K_vv(D_e) the same with the elastic
+     * tangent: 1 where every point round v responds elastically (exactly:
+     * the same sums), towards 0 where the points are perfectly plastic and
+     * their flow takes the one direction in which they would hold v (the
+     * upper vertex of a cut cell whose points lie near its bottom).
+     * GhostPenalty::cell_qualities scales the support quality by it.
+     */
+    const LinearAlgebra::distributed::Vector<double> *
+    support_stiffness_ratios() const
+    {
+      return stiffness_ratio.size() > 0 ? &stiffness_ratio : nullptr;
+    }
+
     /** Voigt form (xx, yy, zz, xy; engineering shear) of a 3D tangent. */
     static Tensor<2, 4>
     voigt_tangent(const SymmetricTensor<4, 3> &tangent);
@@ -231,6 +254,8 @@ namespace bsmpm
     const Kinematics         point_kinematics;
     bool                     quadrature_weights = false;
     Tensor<1, 2>             body_force;
+    /** See support_stiffness_ratios(). */
+    mutable LinearAlgebra::distributed::Vector<double> stiffness_ratio;
   };
 } // namespace bsmpm
 

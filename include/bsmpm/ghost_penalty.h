@@ -101,11 +101,20 @@ namespace bsmpm
      * vertex has a free DoF and one of them no material round it: its DoFs
      * are free only because a support crosses it (a boundary that its
      * points have left), and the penalty must hold them.
+     *
+     * With @p stiffness_ratio (by DoF, with ghost values: a nonlinear
+     * material, ConstitutiveUpdate::support_stiffness_ratios()) the support
+     * of each vertex is scaled by the fraction of its elastic stiffness
+     * that the material keeps round it: points that have lost their
+     * stiffness in the direction in which they would hold a vertex (perfect
+     * plasticity) do not hold it.
      */
     static std::vector<double>
     cell_qualities(const BackgroundGrid            &grid,
                    const std::vector<CellMoments>  &moments,
-                   const AffineConstraints<double> &constraints);
+                   const AffineConstraints<double> &constraints,
+                   const LinearAlgebra::distributed::Vector<double>
+                     *stiffness_ratio = nullptr);
 
     /**
      * The cells (by active_cell_index(), locally owned and ghost) whose
