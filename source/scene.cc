@@ -374,9 +374,12 @@ namespace bsmpm
   std::vector<double>
   Scene::support_qualities() const
   {
-    return GhostPenalty::cell_qualities(grid,
-                                        cell_moments,
-                                        assembly->constraints());
+    return GhostPenalty::cell_qualities(
+      grid,
+      cell_moments,
+      assembly->constraints(),
+      constitutive_update ? constitutive_update->support_stiffness_ratios() :
+                            nullptr);
   }
 
 
@@ -917,11 +920,13 @@ namespace bsmpm
                               report.iterations);
       },
       [&](const double alpha) {
-        // From x + a dx (a the previous length, 2 alpha) to x + alpha dx.
+        // From x + a dx to x + (a - alpha) dx.
         for (const auto i : grid.locally_owned_dofs())
           increment(i) -= alpha * last_correction(i);
         increment.update_ghost_values();
-      });
+      },
+      // dx . R(x): the slope of the potential along dx, for the line search.
+      [&]() { return last_correction * assembly->residual(); });
     for (const auto &iteration : result.iterations)
       {
         record.newton_residuals.push_back(iteration.relative_residual);
