@@ -54,11 +54,13 @@ namespace bsmpm
     const std::function<double()>                          &residual,
     const std::function<std::pair<double, unsigned int>()> &correct,
     const std::function<void(const double)>                &step_back,
-    const std::function<double()>                          &slope) const
+    const std::function<double()>                          &slope,
+    const double                                            initial_norm) const
   {
     Result       result;
     const double initial = reference;
-    double       norm    = residual();
+    // The caller may have assembled the system at the start already.
+    double norm = initial_norm >= 0 ? initial_norm : residual();
     for (unsigned int k = 0;; ++k)
       {
         Iteration iteration;

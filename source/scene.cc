@@ -863,6 +863,8 @@ namespace bsmpm
     const auto  *d_a = has_prescribed ? &prescribed : nullptr;
     const double reference =
       assembly->newton_system(*constitutive_update, points, increment, d_a);
+    // |R| of the system the assembly holds, that of the start.
+    double start_norm = reference;
     if (previous_delta > 0 && previous_increment.size() == increment.size())
       {
         increment.add(delta / previous_delta, previous_increment);
@@ -874,11 +876,13 @@ namespace bsmpm
         // displacement may still leave a larger one: only one ten times
         // larger than that of zero is dropped (cantilever in finite
         // strain: 26 times in step 3).
-        if (!(assembly->newton_system(
-                *constitutive_update, points, increment, d_a) < 10 * reference))
+        start_norm =
+          assembly->newton_system(*constitutive_update, points, increment, d_a);
+        if (!(start_norm < 10 * reference))
           {
             increment = 0;
             increment.update_ghost_values();
+            start_norm = -1; // the held system is not that of zero
           }
       }
     record.iterations = 0;
@@ -926,7 +930,8 @@ namespace bsmpm
         increment.update_ghost_values();
       },
       // dx . R(x): the slope of the potential along dx, for the line search.
-      [&]() { return last_correction * assembly->residual(); });
+      [&]() { return last_correction * assembly->residual(); },
+      start_norm);
     for (const auto &iteration : result.iterations)
       {
         record.newton_residuals.push_back(iteration.relative_residual);

@@ -78,7 +78,8 @@ namespace bsmpm
           const std::function<double()>                          &residual,
           const std::function<std::pair<double, unsigned int>()> &correct,
           const std::function<void(const double)>                &step_back,
-          const std::function<double()> &slope = {}) const;
+          const std::function<double()>                          &slope = {},
+          const double initial_norm = -1) const;
 
     /** How many times a load increment may be halved. */
     unsigned int
