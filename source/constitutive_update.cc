@@ -12,21 +12,6 @@ namespace bsmpm
   {
     using Property = MaterialPoints::Property;
 
-    /** The nodal increment of the cell (with the prescribed part). */
-    void
-    local_increment(
-      const DoFHandler<2>::active_cell_iterator        &cell,
-      const LinearAlgebra::distributed::Vector<double> &increment,
-      const LinearAlgebra::distributed::Vector<double> *prescribed,
-      std::vector<types::global_dof_index>             &dof_indices,
-      Q1CellKernel::LocalVector                        &d)
-    {
-      cell->get_dof_indices(dof_indices);
-      for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-        d[i] = increment(dof_indices[i]) +
-               (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
-    }
-
     /** The points of a cell as ConstitutiveUpdate::cell_system() takes
      * them. */
     void
@@ -456,7 +441,10 @@ namespace bsmpm
             particles.n_particles_in_cell(cell) == 0 ||
             !points.holds_material(cell))
           continue;
-        local_increment(cell, increment, prescribed, dof_indices, d);
+        d = MaterialPoints::cell_increment(cell,
+                                           increment,
+                                           prescribed,
+                                           dof_indices);
         gather_points(particles.particles_in_cell(cell), views);
         n_yielded += cell_system(kernel, views, d, cell_matrix, cell_vector);
         constraints.distribute_local_to_global(
@@ -501,7 +489,10 @@ namespace bsmpm
         if (!cell->is_locally_owned() ||
             particles.n_particles_in_cell(cell) == 0)
           continue;
-        local_increment(cell, increment, prescribed, dof_indices, d);
+        d                      = MaterialPoints::cell_increment(cell,
+                                           increment,
+                                           prescribed,
+                                           dof_indices);
         const auto cell_points = particles.particles_in_cell(cell);
         gather_points(cell_points, views);
         const bool has_material = points.holds_material(cell);

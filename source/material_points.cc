@@ -499,24 +499,20 @@ namespace bsmpm
 
 
 
-  namespace
+  Q1CellKernel::LocalVector
+  MaterialPoints::cell_increment(
+    const DoFHandler<2>::active_cell_iterator        &cell,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    std::vector<types::global_dof_index>             &dof_indices)
   {
-    /** The increment (plus the prescribed part) on the DoFs of @p cell. */
-    Q1CellKernel::LocalVector
-    cell_increment(const DoFHandler<2>::active_cell_iterator        &cell,
-                   const LinearAlgebra::distributed::Vector<double> &increment,
-                   const LinearAlgebra::distributed::Vector<double> *prescribed)
-    {
-      std::vector<types::global_dof_index> dof_indices(
-        Q1CellKernel::dofs_per_cell);
-      cell->get_dof_indices(dof_indices);
-      Q1CellKernel::LocalVector d;
-      for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-        d[i] = increment(dof_indices[i]) +
-               (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
-      return d;
-    }
-  } // namespace
+    cell->get_dof_indices(dof_indices);
+    Q1CellKernel::LocalVector d;
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      d[i] = increment(dof_indices[i]) +
+             (prescribed ? (*prescribed)(dof_indices[i]) : 0.);
+    return d;
+  }
 
 
 
@@ -529,8 +525,10 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> *prescribed) const
   {
     const auto [source, where] = boundary_source(cell, st);
-    const auto e =
-      kernel.strain_coefficients(cell_increment(source, increment, prescribed));
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    const auto e = kernel.strain_coefficients(
+      cell_increment(source, increment, prescribed, dof_indices));
     return e[0] + where[0] * e[1] + where[1] * e[2];
   }
 
@@ -545,8 +543,10 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> *prescribed) const
   {
     const auto [source, where] = boundary_source(cell, st);
-    return kernel.gradient(cell_increment(source, increment, prescribed),
-                           where);
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    return kernel.gradient(
+      cell_increment(source, increment, prescribed, dof_indices), where);
   }
 
 

@@ -249,6 +249,14 @@ namespace bsmpm
       const LinearAlgebra::distributed::Vector<double> &increment,
       const LinearAlgebra::distributed::Vector<double> *prescribed) const;
 
+    /** The nodal values of @p increment plus @p prescribed (if given) on
+     * the DoFs of @p cell, whose indices @p dof_indices receives. */
+    static Q1CellKernel::LocalVector
+    cell_increment(const DoFHandler<2>::active_cell_iterator        &cell,
+                   const LinearAlgebra::distributed::Vector<double> &increment,
+                   const LinearAlgebra::distributed::Vector<double> *prescribed,
+                   std::vector<types::global_dof_index> &dof_indices);
+
     /** Property names and interpretations for Particles::DataOut. */
     static std::vector<std::string>
     property_names(const unsigned int n_properties = Property::n_properties);
