@@ -128,7 +128,8 @@ namespace bsmpm
     const double                                      increment_factor,
     const AffineConstraints<double>                  &constraints,
     TrilinosWrappers::SparseMatrix                   &matrix,
-    TrilinosWrappers::MPI::Vector                    &rhs)
+    TrilinosWrappers::MPI::Vector                    &rhs,
+    const BoundaryCurve                              *only)
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     // Every process holds every curve: the check is collective.
@@ -166,7 +167,8 @@ namespace bsmpm
         {
           const CurveCondition *condition =
             curve.condition_of_segment(piece.segment);
-          if (!is_ibm_support(curve, condition))
+          if (!is_ibm_support(curve, condition) ||
+              (only != nullptr && &curve != only))
             continue;
           const auto cell = grid.locally_owned_cell(piece.cell);
           if (cell == grid.dof_handler().end())

@@ -63,7 +63,8 @@ namespace bsmpm
                             const double                     increment_factor,
                             const AffineConstraints<double> &constraints,
                             TrilinosWrappers::SparseMatrix  &matrix,
-                            TrilinosWrappers::MPI::Vector   &rhs) const
+                            TrilinosWrappers::MPI::Vector   &rhs,
+                            const BoundaryCurve             *only) const
   {
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
@@ -82,7 +83,8 @@ namespace bsmpm
         {
           const CurveCondition *condition =
             curve.condition_of_segment(piece.segment);
-          if (!is_nitsche_support(curve, condition))
+          if (!is_nitsche_support(curve, condition) ||
+              (only != nullptr && &curve != only))
             continue;
           const auto cell = grid.locally_owned_cell(piece.cell);
           if (cell == grid.dof_handler().end())

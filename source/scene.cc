@@ -64,8 +64,9 @@ namespace bsmpm
                       "Boundary curves (by number) whose supports' force on "
                       "the body is reported after every load step as "
                       "quantities curve<k>_force_x and _y (SupportReaction: "
-                      "the work of the stresses on a field that is one on "
-                      "the grid vertices of the cells the supports cross).");
+                      "the nodal force of the supports' terms in the "
+                      "discrete equations, summed; it balances the internal "
+                      "force as the solver integrates it).");
     prm.leave_subsection();
 
     prm.enter_subsection("Probe");
@@ -253,6 +254,7 @@ namespace bsmpm
                               gravity},
         timer);
       assembly->setup();
+      assembly->keep_support_terms(reaction_curves);
       if (constitutive_update)
         {
           assembly->leave_material_to_points(&points);
@@ -702,21 +704,13 @@ namespace bsmpm
         if (!reaction_curves.empty())
           {
             TimerOutput::Scope t(timer, "reactions");
-            const auto         forces =
-              SupportReaction::compute(boundary_curves,
-                                       grid,
-                                       points,
-                                       assembly->kernel(),
-                                       load_factor * material.density() *
-                                         gravity);
             for (const unsigned int c : reaction_curves)
               {
-                AssertThrow(c < forces.size(),
-                            ExcMessage("Reactions/Curves: there is no curve " +
-                                       std::to_string(c + 1) + "."));
+                const Tensor<1, 2> force = SupportReaction::resultant(
+                  grid, assembly->support_forces(c, increment));
                 const std::string name = "curve" + std::to_string(c + 1);
-                run_summary.quantities[name + "_force_x"] = forces[c][0];
-                run_summary.quantities[name + "_force_y"] = forces[c][1];
+                run_summary.quantities[name + "_force_x"] = force[0];
+                run_summary.quantities[name + "_force_y"] = force[1];
               }
           }
         if (boundary_curves.has_loads())

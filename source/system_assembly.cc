@@ -7,6 +7,8 @@
 
 #include <bsmpm/system_assembly.h>
 
+#include <algorithm>
+
 namespace bsmpm
 {
   SystemAssembly::SystemAssembly(const Parts &parts, TimerOutput &timer)
@@ -76,6 +78,7 @@ namespace bsmpm
                                                grid.locally_owned_dofs(),
                                                comm,
                                                grid.locally_relevant_dofs());
+    support_layout_current = false;
     system_matrix.clear();
     system_matrix.reinit(grid.locally_owned_dofs(),
                          grid.locally_owned_dofs(),
@@ -240,6 +243,10 @@ namespace bsmpm
                                      system_matrix,
                                      system_rhs);
       }
+    // Before the system's own implicit boundary terms, whose band points
+    // the implicit boundary keeps.
+    if (!support_curves.empty())
+      assemble_support_terms(increment_factor, prescribed);
     if (parts.curves.has_supports(
           BoundaryCurve::DirichletMethod::implicit_boundary))
       {
@@ -284,6 +291,89 @@ namespace bsmpm
     system_rhs.compress(VectorOperation::add);
   }
 
+
+
+  void
+  SystemAssembly::assemble_support_terms(
+    const double                                      increment_factor,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    TimerOutput::Scope t(timer, "reactions");
+    const unsigned int n = support_curves.size();
+    if (!support_layout_current || support_matrices.size() != n)
+      {
+        support_matrices.resize(n);
+        support_rhs.resize(n);
+        for (unsigned int c = 0; c < n; ++c)
+          {
+            support_matrices[c].reinit(system_matrix);
+            support_rhs[c].reinit(system_rhs);
+          }
+        support_layout_current = true;
+      }
+    // Without constraints: a DoF that a face of the grid holds still
+    // receives the supports' force.
+    AffineConstraints<double> none;
+    none.close();
+    const auto &curves = parts.curves.get_curves();
+    for (unsigned int c = 0; c < n; ++c)
+      {
+        AssertThrow(support_curves[c] < curves.size(),
+                    ExcMessage("Reactions/Curves: there is no curve " +
+                               std::to_string(support_curves[c] + 1) + "."));
+        const BoundaryCurve &curve = curves[support_curves[c]];
+        support_matrices[c]        = 0;
+        support_rhs[c]             = 0;
+        if (curve.dirichlet_method ==
+            BoundaryCurve::DirichletMethod::implicit_boundary)
+          parts.implicit_boundary.assemble(parts.curves,
+                                           parts.grid,
+                                           *cell_kernel,
+                                           parts.material.stiffness(),
+                                           prescribed,
+                                           parts.exact_solution,
+                                           increment_factor,
+                                           none,
+                                           support_matrices[c],
+                                           support_rhs[c],
+                                           &curve);
+        else
+          parts.nitsche_boundary.assemble(parts.curves,
+                                          parts.grid,
+                                          *cell_kernel,
+                                          parts.material,
+                                          parts.exact_solution,
+                                          increment_factor,
+                                          none,
+                                          support_matrices[c],
+                                          support_rhs[c],
+                                          &curve);
+        support_matrices[c].compress(VectorOperation::add);
+        support_rhs[c].compress(VectorOperation::add);
+      }
+  }
+
+
+
+  TrilinosWrappers::MPI::Vector
+  SystemAssembly::support_forces(
+    const unsigned int                                curve,
+    const LinearAlgebra::distributed::Vector<double> &increment) const
+  {
+    const auto c = static_cast<unsigned int>(
+      std::find(support_curves.begin(), support_curves.end(), curve) -
+      support_curves.begin());
+    AssertThrow(c < support_matrices.size(),
+                ExcMessage("The supports' terms of curve " +
+                           std::to_string(curve + 1) + " were not kept."));
+    TrilinosWrappers::MPI::Vector x(support_rhs[c]), force(support_rhs[c]);
+    for (const auto i : parts.grid.locally_owned_dofs())
+      x(i) = increment(i);
+    x.compress(VectorOperation::insert);
+    support_matrices[c].vmult(force, x);
+    force.sadd(-1., 1., support_rhs[c]);
+    return force;
+  }
 
 
   double

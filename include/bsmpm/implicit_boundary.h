@@ -84,6 +84,7 @@ namespace bsmpm
      * @p prescribed (d^a with ghosts, frame and paper formulations) or, in
      * the consistent formulation, from the prescribed values themselves
      * times @p increment_factor (@p exact for "displacement exact").
+     * With @p only, the supports of that curve alone (SupportReaction).
      */
     void
     assemble(const BoundaryCurves                             &curves,
@@ -95,7 +96,8 @@ namespace bsmpm
              const double                                      increment_factor,
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &matrix,
-             TrilinosWrappers::MPI::Vector                    &rhs);
+             TrilinosWrappers::MPI::Vector                    &rhs,
+             const BoundaryCurve                              *only = nullptr);
 
     /** Whether any IBM support prescribes a displacement (both
      * components: a normal displacement is imposed by the consistent

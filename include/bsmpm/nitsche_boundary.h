@@ -56,7 +56,8 @@ namespace bsmpm
              const double                     increment_factor,
              const AffineConstraints<double> &constraints,
              TrilinosWrappers::SparseMatrix  &matrix,
-             TrilinosWrappers::MPI::Vector   &rhs) const;
+             TrilinosWrappers::MPI::Vector   &rhs,
+             const BoundaryCurve             *only = nullptr) const;
 
   private:
     double       penalty        = 100;

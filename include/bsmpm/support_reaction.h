@@ -3,47 +3,39 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <bsmpm/background_grid.h>
-#include <bsmpm/boundary_curves.h>
-#include <bsmpm/material_points.h>
-#include <bsmpm/q1_cell_kernel.h>
+#include <deal.II/lac/trilinos_vector.h>
 
-#include <vector>
+#include <bsmpm/background_grid.h>
 
 namespace bsmpm
 {
   using namespace dealii;
 
   /**
-   * The force that the supports of each boundary curve exert on the body, as
-   * the work of the points' stresses on a test field (doc/newton.md,
-   * "Reaction forces").
+   * The force that the supports of a boundary curve exert on the body
+   * (doc/newton.md, "Support reactions").
    *
-   * For any admissible virtual displacement v,
-   *   int sigma : eps(v) - int b . v = int_Gamma t . v .
-   * With v = e_k on every grid vertex of the cells that a curve's supports
-   * cross, and zero elsewhere, v is e_k along those supports and zero at
-   * every other support that lies away from them (tractions elsewhere are
-   * zero or known): the right side is the k-th component of the force that
-   * the supports exert. The left side is a sum over the points of the
-   * cells next to those vertices, with the plain MP quadrature.
+   * The supports (implicit boundary method, Nitsche) enter the discrete
+   * equations as terms K_s, r_s of the system; at a converged step their
+   * nodal force r_s - K_s x (SystemAssembly::support_forces()) balances
+   * everything else that the solver integrates: the internal force with its
+   * own quadrature weights, the ghost penalty, the loads. Its sum over the
+   * DoFs of each component is the curve's reaction: the work of the
+   * supports on a uniform virtual displacement. It is exact for the
+   * discrete solution whatever quadrature the cells use; a sum over the
+   * points with their volumes is not, and drifted by several per cent
+   * whenever cut cells changed (doc/newton.md).
    */
   class SupportReaction
   {
   public:
     /**
-     * One force per curve of @p curves (zero for curves without supports),
-     * over all processes, from the points' current stresses at their
-     * reference locations in the cells they were last sorted into: call it
-     * after the stresses are updated and before the points are re-sorted.
-     * @p body_force: the body force per unit volume of the step.
+     * The sum over all processes of the x and y components of the nodal
+     * forces @p support_forces (locally owned DoFs of @p grid).
      */
-    static std::vector<Tensor<1, 2>>
-    compute(const BoundaryCurves &curves,
-            const BackgroundGrid &grid,
-            const MaterialPoints &points,
-            const Q1CellKernel   &kernel,
-            const Tensor<1, 2>   &body_force);
+    static Tensor<1, 2>
+    resultant(const BackgroundGrid                &grid,
+              const TrilinosWrappers::MPI::Vector &support_forces);
   };
 } // namespace bsmpm
 

@@ -143,6 +143,32 @@ namespace bsmpm
       finite_strain = yes;
     }
 
+    /**
+     * Which boundary curves (by index) assemble() keeps the supports'
+     * terms (implicit boundary method, Nitsche) of apart, each in a matrix
+     * of the system's pattern, for support_forces().
+     */
+    void
+    keep_support_terms(const std::vector<unsigned int> &curves)
+    {
+      support_curves = curves;
+    }
+
+    /**
+     * The force that the supports of curve @p curve (one of those of
+     * keep_support_terms()) exert on the grid's DoFs at the end of a step
+     * whose converged increment is @p increment: r_s - K_s x, their share
+     * of the system of the last assemble() (without constraints, so that
+     * DoFs that the grid's faces hold keep their share). The rest of the
+     * system balances it: the internal force with the solver's own
+     * quadrature (fitted weights, cells without points), the ghost penalty
+     * and the loads.
+     */
+    TrilinosWrappers::MPI::Vector
+    support_forces(
+      const unsigned int                                curve,
+      const LinearAlgebra::distributed::Vector<double> &increment) const;
+
     /** Locally owned points with volume that yield at the last
      * newton_system(), over all processes. */
     unsigned long long
@@ -198,6 +224,12 @@ namespace bsmpm
     bool                           material_from_points = false;
     const MaterialPoints          *material_points      = nullptr;
     bool                           finite_strain        = false;
+    /** keep_support_terms(): the curves, their supports' terms. */
+    std::vector<unsigned int>                   support_curves;
+    std::vector<TrilinosWrappers::SparseMatrix> support_matrices;
+    std::vector<TrilinosWrappers::MPI::Vector>  support_rhs;
+    /** Whether support_matrices have the layout of system_matrix. */
+    bool support_layout_current = false;
     /**
      * Builds the sparsity pattern and the matrix: the couplings of every
      * cell, and across the faces of the cells flagged in @p face_cells (by
@@ -206,6 +238,12 @@ namespace bsmpm
      */
     void
     make_matrix(const std::vector<bool> &face_cells);
+
+    /** Assembles the supports' terms of keep_support_terms()'s curves. */
+    void
+    assemble_support_terms(
+      const double                                      increment_factor,
+      const LinearAlgebra::distributed::Vector<double> *prescribed);
 
     /** Cells whose face couplings the matrix holds. */
     std::vector<bool> coupled_faces;
