@@ -247,34 +247,12 @@ namespace bsmpm
     // the implicit boundary keeps.
     if (!support_curves.empty())
       assemble_support_terms(increment_factor, prescribed);
-    if (parts.curves.has_supports(
-          BoundaryCurve::DirichletMethod::implicit_boundary))
-      {
-        TimerOutput::Scope t(timer, "implicit boundary");
-        parts.implicit_boundary.assemble(parts.curves,
-                                         grid,
-                                         kernel,
-                                         parts.material.stiffness(),
-                                         prescribed,
-                                         parts.exact_solution,
-                                         increment_factor,
-                                         constraints,
-                                         system_matrix,
-                                         system_rhs);
-      }
-    if (parts.curves.has_supports(BoundaryCurve::DirichletMethod::nitsche))
-      {
-        TimerOutput::Scope t(timer, "nitsche");
-        parts.nitsche_boundary.assemble(parts.curves,
-                                        grid,
-                                        kernel,
-                                        parts.material,
-                                        parts.exact_solution,
-                                        increment_factor,
-                                        constraints,
-                                        system_matrix,
-                                        system_rhs);
-      }
+    add_support_terms(increment_factor,
+                      prescribed,
+                      constraints,
+                      system_matrix,
+                      system_rhs,
+                      nullptr);
     if (parts.curves.has_loads())
       {
         TimerOutput::Scope t(timer, "neumann loads");
@@ -321,35 +299,62 @@ namespace bsmpm
         AssertThrow(support_curves[c] < curves.size(),
                     ExcMessage("Reactions/Curves: there is no curve " +
                                std::to_string(support_curves[c] + 1) + "."));
-        const BoundaryCurve &curve = curves[support_curves[c]];
-        support_matrices[c]        = 0;
-        support_rhs[c]             = 0;
-        if (curve.dirichlet_method ==
-            BoundaryCurve::DirichletMethod::implicit_boundary)
-          parts.implicit_boundary.assemble(parts.curves,
-                                           parts.grid,
-                                           *cell_kernel,
-                                           parts.material.stiffness(),
-                                           prescribed,
-                                           parts.exact_solution,
-                                           increment_factor,
-                                           none,
-                                           support_matrices[c],
-                                           support_rhs[c],
-                                           &curve);
-        else
-          parts.nitsche_boundary.assemble(parts.curves,
-                                          parts.grid,
-                                          *cell_kernel,
-                                          parts.material,
-                                          parts.exact_solution,
-                                          increment_factor,
-                                          none,
-                                          support_matrices[c],
-                                          support_rhs[c],
-                                          &curve);
+        support_matrices[c] = 0;
+        support_rhs[c]      = 0;
+        add_support_terms(increment_factor,
+                          prescribed,
+                          none,
+                          support_matrices[c],
+                          support_rhs[c],
+                          &curves[support_curves[c]]);
         support_matrices[c].compress(VectorOperation::add);
         support_rhs[c].compress(VectorOperation::add);
+      }
+  }
+
+
+
+  void
+  SystemAssembly::add_support_terms(
+    const double                                      increment_factor,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   &matrix,
+    TrilinosWrappers::MPI::Vector                    &rhs,
+    const BoundaryCurve                              *only)
+  {
+    const auto uses = [&](const BoundaryCurve::DirichletMethod method) {
+      return only != nullptr ? only->dirichlet_method == method :
+                               parts.curves.has_supports(method);
+    };
+    if (uses(BoundaryCurve::DirichletMethod::implicit_boundary))
+      {
+        TimerOutput::Scope t(timer, "implicit boundary");
+        parts.implicit_boundary.assemble(parts.curves,
+                                         parts.grid,
+                                         *cell_kernel,
+                                         parts.material.stiffness(),
+                                         prescribed,
+                                         parts.exact_solution,
+                                         increment_factor,
+                                         constraints,
+                                         matrix,
+                                         rhs,
+                                         only);
+      }
+    if (uses(BoundaryCurve::DirichletMethod::nitsche))
+      {
+        TimerOutput::Scope t(timer, "nitsche");
+        parts.nitsche_boundary.assemble(parts.curves,
+                                        parts.grid,
+                                        *cell_kernel,
+                                        parts.material,
+                                        parts.exact_solution,
+                                        increment_factor,
+                                        constraints,
+                                        matrix,
+                                        rhs,
+                                        only);
       }
   }
 

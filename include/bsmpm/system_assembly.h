@@ -239,6 +239,17 @@ namespace bsmpm
     void
     make_matrix(const std::vector<bool> &face_cells);
 
+    /** Adds the terms of the supports (implicit boundary method, Nitsche)
+     * of all curves, or of @p only, to @p matrix and @p rhs. */
+    void
+    add_support_terms(
+      const double                                      increment_factor,
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   &matrix,
+      TrilinosWrappers::MPI::Vector                    &rhs,
+      const BoundaryCurve                              *only);
+
     /** Assembles the supports' terms of keep_support_terms()'s curves. */
     void
     assemble_support_terms(
