@@ -586,6 +586,7 @@ namespace bsmpm
     grid_out.add_data_vector(quality, "support_quality");
     grid_out.add_data_vector(subdomain, "subdomain");
     grid_out.build_patches();
+    grid_out.set_flags(output.vtk_flags());
     output.write_series("grid", step, load_factor, grid_out);
 
     Particles::DataOut<2> points_out;
@@ -601,6 +602,7 @@ namespace bsmpm
                              MaterialPoints::property_names(
                                points.n_properties()),
                              interpretation);
+    points_out.set_flags(output.vtk_flags());
     output.write_series("points", step, load_factor, points_out);
 
     if (!boundary_curves.empty())
