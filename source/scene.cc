@@ -15,6 +15,7 @@
 #include <bsmpm/parameter_tools.h>
 #include <bsmpm/scene.h>
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -768,6 +769,20 @@ namespace bsmpm
         if (has_prescribed)
           fit_prescribed_displacement(delta);
         cell_quality = support_qualities();
+        // A Newton failure that cutting the increment does not cure comes
+        // from a mechanism that the stabilisation leaves free: perfectly
+        // plastic points at their limit, driven by the imbalance that the
+        // new quadrature of the moved points leaves (doc/newton.md). Every
+        // cut of the increment therefore also lowers the qualities ten times
+        // (the ghost penalty's threshold raised ten times), at most a
+        // hundred times, for the rest of the step.
+        if (cuts > 0)
+          {
+            const double factor = std::pow(10., std::min(cuts, 2u));
+            for (auto &q : cell_quality)
+              if (q > 0)
+                q /= factor;
+          }
         assembly->assemble(lambda + delta,
                            delta,
                            cell_moments,
