@@ -139,6 +139,36 @@ namespace bsmpm
 
 
 
+  void
+  OutputWriter::write_series(
+    const std::string                         &series,
+    const unsigned int                         step,
+    const double                               time,
+    const std::function<void(std::ostream &)> &piece,
+    const std::function<void(std::ostream &, const std::vector<std::string> &)>
+      &record)
+  {
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    const std::string  base = series + "-" + Utilities::int_to_string(step, 4);
+
+    const auto piece_name = [&base](const unsigned int r) {
+      return base + "." + Utilities::int_to_string(r) + ".vtu";
+    };
+    write_atomically(output_directory + "/" + piece_name(rank), piece);
+
+    std::vector<std::string> pieces;
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      pieces.push_back(piece_name(r));
+    // The record must name pieces that exist: wait for all of them.
+    MPI_Barrier(communicator);
+    write_root_file(base + ".pvtu",
+                    [&](std::ostream &out) { record(out, pieces); });
+    collections[series].push_back({time, base + ".pvtu"});
+  }
+
+
+
   template <int dim>
   void
   OutputWriter::write_series(const std::string              &series,
@@ -146,25 +176,14 @@ namespace bsmpm
                              const double                    time,
                              const DataOutInterface<dim, 2> &data)
   {
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(communicator);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
-    const std::string  base = series + "-" + Utilities::int_to_string(step, 4);
-
-    const auto piece = [&base](const unsigned int r) {
-      return base + "." + Utilities::int_to_string(r) + ".vtu";
-    };
-    write_atomically(output_directory + "/" + piece(rank),
-                     [&data](std::ostream &out) { data.write_vtu(out); });
-
-    std::vector<std::string> pieces;
-    for (unsigned int r = 0; r < n_ranks; ++r)
-      pieces.push_back(piece(r));
-    // The record must name pieces that exist: wait for all of them.
-    MPI_Barrier(communicator);
-    write_root_file(base + ".pvtu", [&](std::ostream &out) {
-      data.write_pvtu_record(out, pieces);
-    });
-    collections[series].push_back({time, base + ".pvtu"});
+    write_series(
+      series,
+      step,
+      time,
+      [&data](std::ostream &out) { data.write_vtu(out); },
+      [&data](std::ostream &out, const std::vector<std::string> &pieces) {
+        data.write_pvtu_record(out, pieces);
+      });
   }
 
 
@@ -220,11 +239,6 @@ namespace bsmpm
 
 
 
-  template void
-  OutputWriter::write_series<0>(const std::string &,
-                                const unsigned int,
-                                const double,
-                                const DataOutInterface<0, 2> &);
   template void
   OutputWriter::write_series<2>(const std::string &,
                                 const unsigned int,

@@ -7,12 +7,11 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include <deal.II/particles/data_out.h>
-
 #include <bsmpm/curve_output.h>
 #include <bsmpm/error_measures.h>
 #include <bsmpm/input_checks.h>
 #include <bsmpm/parameter_tools.h>
+#include <bsmpm/point_output.h>
 #include <bsmpm/scene.h>
 
 #include <cmath>
@@ -590,21 +589,15 @@ namespace bsmpm
     grid_out.set_flags(output.vtk_flags());
     output.write_series("grid", step, load_factor, grid_out);
 
-    Particles::DataOut<2> points_out;
-    std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(points.n_properties(),
-                     DataComponentInterpretation::component_is_scalar);
-    for (const unsigned int vector_start :
-         {MaterialPoints::Property::displacement,
-          MaterialPoints::Property::initial_position})
-      interpretation[vector_start] = interpretation[vector_start + 1] =
-        DataComponentInterpretation::component_is_part_of_vector;
-    points_out.build_patches(points.particle_handler(),
-                             MaterialPoints::property_names(
-                               points.n_properties()),
-                             interpretation);
-    points_out.set_flags(output.vtk_flags());
-    output.write_series("points", step, load_factor, points_out);
+    const PointOutput points_out(points, output.vtk_flags());
+    output.write_series(
+      "points",
+      step,
+      load_factor,
+      [&](std::ostream &out) { points_out.write_vtu(out); },
+      [&](std::ostream &out, const std::vector<std::string> &pieces) {
+        points_out.write_pvtu_record(out, pieces);
+      });
 
     if (!boundary_curves.empty())
       {

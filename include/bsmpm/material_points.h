@@ -257,7 +257,7 @@ namespace bsmpm
                    const LinearAlgebra::distributed::Vector<double> *prescribed,
                    std::vector<types::global_dof_index> &dof_indices);
 
-    /** Property names and interpretations for Particles::DataOut. */
+    /** Names of the properties in the points' ParaView files (PointOutput). */
     static std::vector<std::string>
     property_names(const unsigned int n_properties = Property::n_properties);
 

@@ -61,10 +61,22 @@ namespace bsmpm
     }
 
     /**
-     * Writes series @p series of step @p step from a DataOutInterface
-     * (DataOut, Particles::DataOut, ...) with patches already built: a .vtu
-     * per process and a .pvtu record, and records it in the collections.
+     * Writes series @p series of step @p step: every process its piece, a
+     * .vtu file that @p piece writes, then process 0 the .pvtu record that
+     * @p record writes for the pieces' file names; and records it in the
+     * collections.
      */
+    void
+    write_series(
+      const std::string                                           &series,
+      const unsigned int                                           step,
+      const double                                                 time,
+      const std::function<void(std::ostream &)>                   &piece,
+      const std::function<void(std::ostream &,
+                               const std::vector<std::string> &)> &record);
+
+    /** The same from a DataOutInterface (such as DataOut) with patches
+     * already built. */
     template <int dim>
     void
     write_series(const std::string              &series,
