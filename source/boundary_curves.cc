@@ -330,6 +330,58 @@ namespace bsmpm
 
 
 
+  const CurveCondition *
+  BoundaryCurve::rigid_support(const unsigned int k) const
+  {
+    const unsigned int n    = n_segments();
+    const unsigned int none = numbers::invalid_unsigned_int;
+    // The ends of an open chain meet other curves, whose points there move
+    // with the body: they must stay together.
+    if (n == 0 || !spline || (!closed && (k == 0 || k == n)))
+      return nullptr;
+    const auto previous = [&](const unsigned int j) {
+      return j == none ? none : j > 0 ? j - 1 : closed ? n - 1 : none;
+    };
+    const auto next = [&](const unsigned int j) {
+      return j == none ? none : j + 1 < n ? j + 1 : closed ? 0 : none;
+    };
+    const auto condition = [&](const unsigned int j) -> const CurveCondition * {
+      return j == none ? nullptr : condition_of_segment(j);
+    };
+    // The segments on either side of point k (none beyond the ends of an
+    // open chain).
+    const unsigned int    before = k > 0 ? k - 1 : closed ? n - 1 : none;
+    const unsigned int    after  = k < n ? k : none;
+    const CurveCondition *own    = nullptr;
+    for (const unsigned int j : {before, after})
+      if (const CurveCondition *c = condition(j);
+          c != nullptr && c->kind == CurveCondition::Kind::normal_displacement)
+        own = c;
+    if (own == nullptr)
+      return nullptr;
+    for (const unsigned int j : {before, after})
+      if (const CurveCondition *c = condition(j);
+          c != nullptr && c != own && c->is_support())
+        return nullptr;
+    // The run of the condition's segments through the point: a rigid body
+    // if one of its ends meets a segment that is no support.
+    unsigned int first = condition(after) == own ? after : before;
+    unsigned int last  = first;
+    for (unsigned int s = 0; s < n && condition(previous(first)) == own; ++s)
+      first = previous(first);
+    for (unsigned int s = 0; s < n && condition(next(last)) == own; ++s)
+      last = next(last);
+    const auto meets_no_support = [&](const unsigned int j) {
+      const CurveCondition *c = condition(j);
+      return j != none && (c == nullptr || !c->is_support());
+    };
+    if (!meets_no_support(previous(first)) && !meets_no_support(next(last)))
+      return nullptr;
+    return own;
+  }
+
+
+
   void
   BoundaryCurves::declare_parameters(ParameterHandler &prm)
   {
@@ -694,6 +746,38 @@ namespace bsmpm
                                    Utilities::trim(message.str())));
           }
       }
+  }
+
+
+
+  std::vector<std::pair<bool, Tensor<1, 2>>>
+  BoundaryCurves::rigid_support_increments(const unsigned int   n_slots,
+                                           const ExactSolution *exact,
+                                           const double         factor) const
+  {
+    std::vector<std::pair<bool, Tensor<1, 2>>> increments(n_slots,
+                                                          {false,
+                                                           Tensor<1, 2>()});
+    for (const auto &curve : curves)
+      for (unsigned int k = 0; k < curve.tracked_slots.size(); ++k)
+        if (const CurveCondition *condition = curve.rigid_support(k);
+            condition != nullptr && curve.tracked_slots[k] < n_slots)
+          {
+            AssertThrow(condition->function || exact != nullptr,
+                        ExcMessage("Boundary curves/" + curve.name + ": '" +
+                                   condition->kind_name() +
+                                   " exact' needs an exact solution."));
+            const unsigned int n = curve.n_segments();
+            const double u = k < n ? curve.spline->segment_parameters(k)[0] :
+                                     curve.spline->segment_parameters(n - 1)[1];
+            const Tensor<1, 2> normal = curve.spline->outward_normal(u);
+            const Point<2>    &x      = curve.positions[k];
+            const double       u_n    = condition->function ?
+                                          condition->function->value(x, 0) :
+                                          exact->displacement(x) * normal;
+            increments[curve.tracked_slots[k]] = {true, factor * u_n * normal};
+          }
+    return increments;
   }
 
 

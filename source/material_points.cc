@@ -216,6 +216,17 @@ namespace bsmpm
                 du);
             if (prescribed)
               du += kernel.displacement(da, st);
+            // A tracking point of a rigid body pushed along its normal (a
+            // smooth footing) moves with the body, not with the soil that
+            // slides along it (BoundaryCurve::rigid_support()).
+            if (!rigid_increments.empty() &&
+                particle.get_properties()[Property::volume] == 0.)
+              {
+                const unsigned int slot = tracked_slot[particle.get_id()];
+                if (slot < rigid_increments.size() &&
+                    rigid_increments[slot].first)
+                  du = rigid_increments[slot].second;
+              }
 
             auto props                  = particle.get_properties();
             props[Property::d_function] = D;
@@ -393,6 +404,7 @@ namespace bsmpm
   MaterialPoints::track(const std::vector<types::particle_index> &ids)
   {
     tracked_slot.assign(next_id, numbers::invalid_unsigned_int);
+    n_tracked_slots = ids.size();
     for (unsigned int slot = 0; slot < ids.size(); ++slot)
       {
         AssertThrow(ids[slot] < next_id,

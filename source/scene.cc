@@ -451,7 +451,7 @@ namespace bsmpm
 
 
   void
-  Scene::move_points(const unsigned int step)
+  Scene::move_points(const unsigned int step, const double delta)
   {
     TimerOutput::Scope t(timer, "update points");
     const bool         ibm = boundary_curves.has_supports(
@@ -465,6 +465,9 @@ namespace bsmpm
           false,
           band_cells);
       }
+    if (!boundary_curves.empty())
+      points.set_rigid_increments(boundary_curves.rigid_support_increments(
+        points.n_tracked(), exact_solution.get(), delta));
     const auto report = points.move(
       assembly->kernel(),
       material,
@@ -845,7 +848,7 @@ namespace bsmpm
             record.relative_residual = report.relative_residual;
           }
         record.n_active_cells = assembly->n_active_cells();
-        move_points(step);
+        move_points(step, delta);
         points_moved = true;
         update_curves();
         lambda += delta;

@@ -8,6 +8,7 @@
 #include <bsmpm/background_grid.h>
 #include <bsmpm/body_region.h>
 #include <bsmpm/curve_cell_intersection.h>
+#include <bsmpm/exact_solution.h>
 #include <bsmpm/material_points.h>
 
 #include <memory>
@@ -170,6 +171,20 @@ namespace bsmpm
       return closed ? positions.size() : positions.size() - 1;
     }
 
+    /**
+     * The condition of the rigid body that point @p k belongs to, or
+     * nullptr. A rigid body is pushed by a prescribed normal displacement
+     * (a smooth footing): a run of segments with the same 'normal
+     * displacement' condition of which at least one end meets a segment
+     * that is no support (the footing's edge meets the free surface). Its
+     * points move with the body, by the prescribed normal displacement, so
+     * that the contact keeps its extent while the soil slides along it. An
+     * end of the run that meets another support (the corner of a box held
+     * on two sides) slides with the body as before.
+     */
+    const CurveCondition *
+    rigid_support(const unsigned int k) const;
+
     /** The stress of the curve's points as of the last load step at
      * parameter @p u of segment @p segment, interpolated linearly between
      * the segment's two points: the boundary's stress, whose traction is the
@@ -249,6 +264,19 @@ namespace bsmpm
      * by @p grid. */
     void
     update(const MaterialPoints &points, const BackgroundGrid &grid);
+
+    /**
+     * The increment of every curve point that belongs to a rigid body
+     * (BoundaryCurve::rigid_support()) for the load increment @p factor:
+     * factor u_n n with n the outward normal at the point and u_n the
+     * condition's normal displacement there (from @p exact for 'normal
+     * displacement exact'), by the point's slot in the tracked list of
+     * @p n_slots points; the flag is false for every other slot.
+     */
+    std::vector<std::pair<bool, Tensor<1, 2>>>
+    rigid_support_increments(const unsigned int   n_slots,
+                             const ExactSolution *exact,
+                             const double         factor) const;
 
     const std::vector<BoundaryCurve> &
     get_curves() const

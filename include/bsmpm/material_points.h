@@ -211,6 +211,25 @@ namespace bsmpm
     void
     track(const std::vector<types::particle_index> &ids);
 
+    /** Number of tracked points (the list given to track()). */
+    unsigned int
+    n_tracked() const
+    {
+      return n_tracked_slots;
+    }
+
+    /**
+     * For the tracked points, by slot: whether the point belongs to a rigid
+     * support and, if so, its increment in the next move() in place of the
+     * body's (BoundaryCurves::rigid_support_increments()).
+     */
+    void
+    set_rigid_increments(
+      const std::vector<std::pair<bool, Tensor<1, 2>>> &increments)
+    {
+      rigid_increments = increments;
+    }
+
     /** Current positions and stresses of the tracked points, in the order
      * given to track(), on every process. */
     void
@@ -286,8 +305,12 @@ namespace bsmpm
     types::particle_index         n_material_points = 0;
     types::particle_index         next_id           = 0;
 
+    /** By tracked slot: set_rigid_increments(). */
+    std::vector<std::pair<bool, Tensor<1, 2>>> rigid_increments;
     /** Slot of each particle id in the tracked list, or invalid. */
     std::vector<unsigned int> tracked_slot;
+    /** Length of the tracked list given to track(). */
+    unsigned int n_tracked_slots = 0;
     /** State of the locally owned tracked points: slot, x, y, and stress. */
     std::vector<std::array<double, 6>> tracked_local;
   };

@@ -125,8 +125,10 @@ namespace bsmpm
      * increment; the increment starts from zero. */
     NewtonSolver::Result
     solve_nonlinear(const double delta, RunSummary::Step &record);
+    /** Moves the points by the converged increment of load increment
+     * @p delta of load step @p step. */
     void
-    move_points(const unsigned int step);
+    move_points(const unsigned int step, const double delta);
     /** Why points left the grid, from what the step can see. */
     std::string
     diagnose(const MaterialPoints::MoveReport &report) const;
