@@ -228,6 +228,23 @@ namespace bsmpm
                   du = rigid_increments[slot].second;
               }
 
+            // A point on a face of the grid (a curve that ends on a face's
+            // support, as the footing's base at the symmetry line) stays in
+            // the grid when the increment carries it out by no more than
+            // the implicit boundary's inexactness (1e-9 .. 1e-7 h seen
+            // where a support lies on a grid line); a real departure is
+            // reported below.
+            for (unsigned int k = 0; k < 2; ++k)
+              {
+                const double tolerance = 1e-6 * grid.cell_size()[k];
+                const double position  = particle.get_location()[k] + du[k];
+                const double below     = grid.lower_left()[k] - position;
+                const double above     = position - grid.upper_right()[k];
+                if (below > 0 && below <= tolerance)
+                  du[k] += below;
+                else if (above > 0 && above <= tolerance)
+                  du[k] -= above;
+              }
             auto props                  = particle.get_properties();
             props[Property::d_function] = D;
             for (unsigned int r = 0; r < 3; ++r)
