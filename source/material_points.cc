@@ -173,7 +173,10 @@ namespace bsmpm
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
-    bool                found_example = false;
+    bool                found_example           = false;
+    double              max_displacement_square = 0;
+    double              max_stress_square       = 0;
+    double              max_increment_square    = 0;
     tracked_local.clear();
 
     std::vector<types::global_dof_index> dof_indices(
@@ -257,26 +260,31 @@ namespace bsmpm
               }
             props[Property::displacement] += du[0];
             props[Property::displacement + 1] += du[1];
+            // Squares here, one square root after the loop: a square root
+            // (and hypot's care for overflow) per point was a tenth of the
+            // loop.
             if (props[Property::volume] > 0)
               {
-                report.max_displacement =
-                  std::max(report.max_displacement,
-                           std::hypot(props[Property::displacement],
-                                      props[Property::displacement + 1]));
-                report.max_stress =
-                  std::max(report.max_stress,
-                           std::sqrt(props[Property::stress] *
-                                       props[Property::stress] +
-                                     props[Property::stress + 1] *
-                                       props[Property::stress + 1] +
-                                     2 * props[Property::stress + 2] *
-                                       props[Property::stress + 2]));
+                max_displacement_square =
+                  std::max(max_displacement_square,
+                           props[Property::displacement] *
+                               props[Property::displacement] +
+                             props[Property::displacement + 1] *
+                               props[Property::displacement + 1]);
+                max_stress_square =
+                  std::max(max_stress_square,
+                           props[Property::stress] * props[Property::stress] +
+                             props[Property::stress + 1] *
+                               props[Property::stress + 1] +
+                             2 * props[Property::stress + 2] *
+                               props[Property::stress + 2]);
               }
 
             const bool finite = std::isfinite(du[0]) && std::isfinite(du[1]);
             report.n_non_finite += !finite;
             if (finite && props[Property::volume] > 0)
-              report.max_increment = std::max(report.max_increment, du.norm());
+              max_increment_square =
+                std::max(max_increment_square, du.norm_square());
             const Point<2> x = particle.get_location() + du;
             if (!finite || !grid.contains(x))
               {
@@ -298,15 +306,16 @@ namespace bsmpm
 
     // Make the report the same on every process.
     report.max_displacement =
-      Utilities::MPI::max(report.max_displacement, grid.mpi_communicator());
-    report.max_stress =
-      Utilities::MPI::max(report.max_stress, grid.mpi_communicator());
+      Utilities::MPI::max(std::sqrt(max_displacement_square),
+                          grid.mpi_communicator());
+    report.max_stress = Utilities::MPI::max(std::sqrt(max_stress_square),
+                                            grid.mpi_communicator());
     report.n_left_grid =
       Utilities::MPI::sum(report.n_left_grid, grid.mpi_communicator());
     report.n_non_finite =
       Utilities::MPI::sum(report.n_non_finite, grid.mpi_communicator());
-    report.max_increment =
-      Utilities::MPI::max(report.max_increment, grid.mpi_communicator());
+    report.max_increment = Utilities::MPI::max(std::sqrt(max_increment_square),
+                                               grid.mpi_communicator());
     const unsigned int rank =
       Utilities::MPI::this_mpi_process(grid.mpi_communicator());
     const unsigned int reporter =
