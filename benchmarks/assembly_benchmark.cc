@@ -4,7 +4,9 @@
 // MP:       bsmpm's material-point assembly as Scene::assemble_system() does
 //           it: MaterialPoints::compute_cell_moments(), then per cell
 //           Q1CellKernel::add_stiffness() and add_internal_force(), and
-//           AffineConstraints::distribute_local_to_global() into a
+//           CellScatter::add() (the entries' positions in Epetra's arrays
+//           found once; AffineConstraints::distribute_local_to_global() for
+//           cells with constrained DoFs) into a
 //           TrilinosWrappers::SparseMatrix and MPI::Vector, then compress().
 // FEValues: deal.II's FEValues with QGauss(n) (n x n points per cell) and a
 //           hand-written kernel K += B^T C B JxW, f += B^T sigma JxW per
@@ -52,6 +54,7 @@
 
 #include <bsmpm/background_grid.h>
 #include <bsmpm/body_region.h>
+#include <bsmpm/cell_scatter.h>
 #include <bsmpm/material.h>
 #include <bsmpm/material_point_layout.h>
 #include <bsmpm/material_points.h>
@@ -138,6 +141,8 @@ namespace
 
     // For every cell, where its 64 matrix entries live in Epetra's storage.
     std::vector<double *> cached_entries;
+    /** The cached scatter of SystemAssembly (CellScatter). */
+    CellScatter scatter;
 
     QGauss<2>                    quadrature;
     std::unique_ptr<FEValues<2>> fe_values;
@@ -296,6 +301,8 @@ namespace
   void
   AssemblyBenchmark::assemble_mp_total()
   {
+    if (!scatter.serves(matrix))
+      scatter.reinit(matrix, grid.dof_handler());
     points->compute_cell_moments(moments);
     FullMatrix<double>                   cell_matrix(8, 8);
     Vector<double>                       cell_rhs(8), internal(8);
@@ -314,8 +321,13 @@ namespace
         kernel->add_internal_force(m, internal);
         cell_rhs -= internal;
         cell->get_dof_indices(dof_indices);
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_rhs, dof_indices, matrix, rhs);
+        scatter.add(cell->active_cell_index(),
+                    cell_matrix,
+                    cell_rhs,
+                    dof_indices,
+                    constraints,
+                    matrix,
+                    rhs);
       }
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);

@@ -79,6 +79,7 @@ namespace bsmpm
                                                comm,
                                                grid.locally_relevant_dofs());
     support_layout_current = false;
+    scatter.clear();
     system_matrix.clear();
     system_matrix.reinit(grid.locally_owned_dofs(),
                          grid.locally_owned_dofs(),
@@ -179,6 +180,8 @@ namespace bsmpm
     timer.enter_subsection("assembly");
     system_matrix = 0;
     system_rhs    = 0;
+    if (!scatter.serves(system_matrix))
+      scatter.reinit(system_matrix, grid.dof_handler());
 
     const Tensor<1, 2> body_force =
       load_factor * parts.material.density() * parts.gravity;
@@ -222,8 +225,13 @@ namespace bsmpm
             cell_matrix.vmult_add(internal = 0, da);
             cell_rhs -= internal;
           }
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+        scatter.add(cell->active_cell_index(),
+                    cell_matrix,
+                    cell_rhs,
+                    dof_indices,
+                    constraints,
+                    system_matrix,
+                    system_rhs);
       }
     // No cell assembles into the rows of unsupported DoFs: give them a
     // diagonal of the material's scale (their solution is zero).

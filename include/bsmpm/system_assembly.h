@@ -10,6 +10,7 @@
 
 #include <bsmpm/background_grid.h>
 #include <bsmpm/boundary_curves.h>
+#include <bsmpm/cell_scatter.h>
 #include <bsmpm/constitutive_update.h>
 #include <bsmpm/exact_solution.h>
 #include <bsmpm/ghost_penalty.h>
@@ -217,6 +218,8 @@ namespace bsmpm
     AffineConstraints<double>      system_constraints;
     TrilinosWrappers::SparseMatrix system_matrix;
     TrilinosWrappers::MPI::Vector  system_rhs;
+    /** Where the cells' entries lie in system_matrix. */
+    CellScatter                    scatter;
     TrilinosWrappers::SparseMatrix boundary_fit_matrix;
     TrilinosWrappers::SparseMatrix tangent_matrix;
     TrilinosWrappers::MPI::Vector  newton_residual;
