@@ -157,11 +157,21 @@ namespace bsmpm
     Tensor<1, 2>
     displacement(const LocalVector &d, const Point<2> &st) const
     {
-      const auto   N = vertex_shape_values(st);
-      Tensor<1, 2> u;
+      // The two sums in local variables, not in the tensor through the
+      // component index: adding into memory at a computed index and reading
+      // the pair back stalled the point update (a fifth of
+      // MaterialPoints::move). Same order of additions, same result.
+      const auto N  = vertex_shape_values(st);
+      double     u0 = 0, u1 = 0;
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
-        u[dof_component[i]] += N[dof_vertex[i]] * d[i];
-      return u;
+        {
+          const double v = N[dof_vertex[i]] * d[i];
+          if (dof_component[i] == 0)
+            u0 += v;
+          else
+            u1 += v;
+        }
+      return Tensor<1, 2>({u0, u1});
     }
 
   private:
