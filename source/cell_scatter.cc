@@ -11,9 +11,9 @@ namespace bsmpm
   void
   CellScatter::clear()
   {
-    first_position.clear();
-    positions.clear();
-    local_rows.clear();
+    slot.clear();
+    rows.clear();
+    places.clear();
     matrix_id = nullptr;
     n_entries = 0;
   }
@@ -22,52 +22,17 @@ namespace bsmpm
 
   void
   CellScatter::reinit(const TrilinosWrappers::SparseMatrix &matrix,
-                      const DoFHandler<2>                  &dof_handler)
+                      const unsigned int                    n_cells)
   {
     clear();
     const Epetra_CrsMatrix &A         = matrix.trilinos_matrix();
     int                    *row_start = nullptr, *columns = nullptr;
     double                 *values = nullptr;
-    // Without Epetra's contiguous storage there is no one value array to
-    // point into: then every cell goes through AffineConstraints.
-    if (A.ExtractCrsDataPointers(row_start, columns, values) != 0)
-      return;
-
-    const unsigned int n     = dof_handler.get_fe().n_dofs_per_cell();
-    const IndexSet    &owned = dof_handler.locally_owned_dofs();
-    std::vector<types::global_dof_index> dof_indices(n);
-    first_position.assign(dof_handler.get_triangulation().n_active_cells(),
-                          numbers::invalid_unsigned_int);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        cell->get_dof_indices(dof_indices);
-        if (!std::all_of(dof_indices.begin(),
-                         dof_indices.end(),
-                         [&](const auto i) { return owned.is_element(i); }))
-          continue;
-        first_position[cell->active_cell_index()] = positions.size();
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const int row = A.LRID(
-              static_cast<TrilinosWrappers::types::int_type>(dof_indices[i]));
-            local_rows.push_back(row);
-            for (unsigned int j = 0; j < n; ++j)
-              {
-                const int column =
-                  A.LCID(static_cast<TrilinosWrappers::types::int_type>(
-                    dof_indices[j]));
-                const int *begin = columns + row_start[row];
-                const int *end   = columns + row_start[row + 1];
-                const int *found = std::find(begin, end, column);
-                AssertThrow(found != end,
-                            ExcMessage("CellScatter: the matrix's pattern "
-                                       "lacks a coupling of a cell."));
-                positions.push_back(static_cast<int>(found - columns));
-              }
-          }
-      }
+    // Without Epetra's contiguous storage there is no value array to point
+    // into: then every cell goes through AffineConstraints.
+    const bool usable =
+      A.ExtractCrsDataPointers(row_start, columns, values) == 0;
+    slot.assign(n_cells, usable ? unknown : uncovered);
     matrix_id = &A;
     n_entries = A.NumMyNonzeros();
   }
@@ -84,6 +49,48 @@ namespace bsmpm
 
 
 
+  unsigned int
+  CellScatter::locate(const std::vector<types::global_dof_index> &dof_indices,
+                      const TrilinosWrappers::SparseMatrix       &matrix)
+  {
+    using Index                       = TrilinosWrappers::types::int_type;
+    const Epetra_CrsMatrix &A         = matrix.trilinos_matrix();
+    const unsigned int      n         = dof_indices.size();
+    int                    *row_start = nullptr, *columns = nullptr;
+    double                 *values = nullptr;
+    A.ExtractCrsDataPointers(row_start, columns, values);
+
+    std::vector<int>          cell_rows(n);
+    std::vector<std::uint8_t> cell_places(n * n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        cell_rows[i] = A.LRID(static_cast<Index>(dof_indices[i]));
+        if (cell_rows[i] < 0)
+          return uncovered;
+        const int *begin = columns + row_start[cell_rows[i]];
+        const int *end   = columns + row_start[cell_rows[i] + 1];
+        // Epetra sorts a row's columns when the matrix is completed.
+        const bool sorted = std::is_sorted(begin, end);
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            const int  column = A.LCID(static_cast<Index>(dof_indices[j]));
+            const int *found  = sorted ? std::lower_bound(begin, end, column) :
+                                         std::find(begin, end, column);
+            AssertThrow(column >= 0 && found != end && *found == column,
+                        ExcMessage("CellScatter: the matrix's pattern lacks "
+                                   "a coupling of a cell."));
+            if (found - begin > 255)
+              return uncovered;
+            cell_places[i * n + j] = static_cast<std::uint8_t>(found - begin);
+          }
+      }
+    rows.insert(rows.end(), cell_rows.begin(), cell_rows.end());
+    places.insert(places.end(), cell_places.begin(), cell_places.end());
+    return rows.size() / n - 1;
+  }
+
+
+
   void
   CellScatter::add(const unsigned int                          cell_index,
                    const FullMatrix<double>                   &cell_matrix,
@@ -91,35 +98,38 @@ namespace bsmpm
                    const std::vector<types::global_dof_index> &dof_indices,
                    const AffineConstraints<double>            &constraints,
                    TrilinosWrappers::SparseMatrix             &matrix,
-                   TrilinosWrappers::MPI::Vector              &rhs) const
+                   TrilinosWrappers::MPI::Vector              &rhs)
   {
-    const unsigned int n     = dof_indices.size();
-    const unsigned int first = first_position.empty() ?
-                                 numbers::invalid_unsigned_int :
-                                 first_position[cell_index];
-    const bool         direct =
-      first != numbers::invalid_unsigned_int &&
+    Assert(serves(matrix), ExcInternalError());
+    const unsigned int n = dof_indices.size();
+    const bool         free =
       std::none_of(dof_indices.begin(), dof_indices.end(), [&](const auto i) {
         return constraints.is_constrained(i);
       });
-    if (!direct)
+    if (free && slot[cell_index] == unknown)
+      slot[cell_index] = locate(dof_indices, matrix);
+    if (!free || slot[cell_index] == uncovered)
       {
         constraints.distribute_local_to_global(
           cell_matrix, cell_rhs, dof_indices, matrix, rhs);
         return;
       }
-    Assert(serves(matrix), ExcInternalError());
+
     int    *row_start = nullptr, *columns = nullptr;
     double *values = nullptr;
     matrix.trilinos_matrix().ExtractCrsDataPointers(row_start, columns, values);
-    const int *position = positions.data() + first;
+    const int          *row = rows.data() + std::size_t(slot[cell_index]) * n;
+    const std::uint8_t *place =
+      places.data() + std::size_t(slot[cell_index]) * n * n;
     for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j, ++position)
-        values[*position] += cell_matrix(i, j);
+      {
+        double *row_values = values + row_start[row[i]];
+        for (unsigned int j = 0; j < n; ++j, ++place)
+          row_values[*place] += cell_matrix(i, j);
+      }
     // The right-hand side has the matrix's row layout (both are made from
     // the owned DoFs): its local indices are the rows'.
-    double    *b   = rhs.trilinos_vector()[0];
-    const int *row = local_rows.data() + first / n;
+    double *b = rhs.trilinos_vector()[0];
     Assert(rhs.trilinos_vector().Map().LID(
              static_cast<TrilinosWrappers::types::int_type>(dof_indices[0])) ==
              row[0],

@@ -181,7 +181,7 @@ namespace bsmpm
     system_matrix = 0;
     system_rhs    = 0;
     if (!scatter.serves(system_matrix))
-      scatter.reinit(system_matrix, grid.dof_handler());
+      scatter.reinit(system_matrix, grid.triangulation().n_active_cells());
 
     const Tensor<1, 2> body_force =
       load_factor * parts.material.density() * parts.gravity;
