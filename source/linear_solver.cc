@@ -23,38 +23,56 @@ namespace bsmpm
     prm.enter_subsection("Linear solver");
     prm.declare_entry("Method",
                       "automatic",
-                      Patterns::Selection("direct|cg amg|automatic"),
+                      Patterns::Selection("direct|cg amg|cg gmg|automatic"),
                       "direct: sparse LU (MUMPS, else KLU); cg amg: conjugate "
-                      "gradients with algebraic multigrid; automatic: direct "
-                      "up to 'Automatic threshold' unknowns, cg amg above "
-                      "(and direct if CG does not converge).");
-    prm.declare_entry("Tolerance",
-                      "automatic",
-                      Patterns::Anything(),
-                      "cg amg: stop when the residual is below this fraction "
-                      "of the right-hand side: a number of at least 1e-15 "
-                      "(below round-off CG would iterate on into underflow "
-                      "and a division by zero), or automatic: tied to the "
-                      "discretisation error, min(1e-8, 1.5e-3 (h/L)^2) with "
-                      "h the diameter of a cell and L that of the grid, "
-                      "which keeps the errors of the scenes within 1e-6 of "
-                      "an exact solve's (measured, doc/benchmarks.md).");
+                      "gradients with algebraic multigrid (Trilinos ML); cg "
+                      "gmg: conjugate gradients with a geometric multigrid "
+                      "V-cycle on the uniform grid (coarse grids of half the "
+                      "cells per direction while both counts are even, "
+                      "Galerkin coarse operators, Chebyshev-Jacobi "
+                      "smoother); automatic: direct up to 'Automatic "
+                      "threshold' unknowns, cg amg above (and direct if CG "
+                      "does not converge). Unsymmetric systems take GMRES "
+                      "with the same preconditioner.");
+    prm.declare_entry(
+      "Tolerance",
+      "automatic",
+      Patterns::Anything(),
+      "cg amg, cg gmg: stop when the residual is below this fraction "
+      "of the right-hand side: a number of at least 1e-15 "
+      "(below round-off CG would iterate on into underflow "
+      "and a division by zero), or automatic: tied to the "
+      "discretisation error, min(1e-8, 1.5e-3 (h/L)^2) with "
+      "h the diameter of a cell and L that of the grid, "
+      "which keeps the errors of the scenes within 1e-6 of "
+      "an exact solve's (measured, doc/benchmarks.md).");
     prm.declare_entry("Preconditioner reuse",
                       "whole",
                       Patterns::Selection("none|aggregates|whole"),
-                      "cg amg: what a solve takes over from the multigrid "
-                      "hierarchy of the previous one when the matrix has "
-                      "the same nonzero structure (the same active cells "
-                      "and constraints): none (a new hierarchy every "
-                      "solve), aggregates (ML's aggregates kept, the coarse "
-                      "operators and smoothers recomputed from the new "
-                      "values) or whole (the previous preconditioner as it "
-                      "is). A reused one that needs many more iterations "
-                      "than when it was new is replaced.");
+                      "cg amg, cg gmg: what a solve takes over from the "
+                      "multigrid hierarchy of the previous one when the "
+                      "matrix has the same nonzero structure (the same "
+                      "active cells and constraints): none (a new hierarchy "
+                      "every solve), aggregates (ML's aggregates, or the "
+                      "geometric prolongations, kept, the coarse operators "
+                      "and smoothers recomputed from the new values) or "
+                      "whole (the previous preconditioner as it is). A "
+                      "reused one that needs many more iterations than when "
+                      "it was new is replaced.");
     prm.declare_entry("Maximum iterations",
                       "10000",
                       Patterns::Integer(1),
-                      "cg amg: iteration limit.");
+                      "cg amg, cg gmg: iteration limit.");
+    prm.declare_entry("Multigrid smoother degree",
+                      "3",
+                      Patterns::Integer(1, 20),
+                      "cg gmg: degree of the Chebyshev smoother (matrix-"
+                      "vector products per smoothing step on each level).");
+    prm.declare_entry("Multigrid coarse size",
+                      "2000",
+                      Patterns::Integer(1),
+                      "cg gmg: a level with at most this many unknowns is "
+                      "not coarsened further but factorised (KLU).");
     prm.declare_entry("Automatic threshold",
                       "1000",
                       Patterns::Integer(0),
@@ -91,9 +109,10 @@ namespace bsmpm
   {
     prm.enter_subsection("Linear solver");
     const std::string m = prm.get("Method");
-    method              = m == "direct" ?
-                            Method::direct :
-                            (m == "cg amg" ? Method::cg_amg : Method::automatic);
+    method              = m == "direct" ? Method::direct :
+                          m == "cg amg" ? Method::cg_amg :
+                          m == "cg gmg" ? Method::cg_gmg :
+                                          Method::automatic;
     const std::string t = Utilities::trim(prm.get("Tolerance"));
     if (t == "automatic")
       tolerance = 0;
@@ -115,15 +134,17 @@ namespace bsmpm
                                "least 1e-15 (below round-off CG would "
                                "iterate on into underflow)."));
       }
-    const std::string r  = prm.get("Preconditioner reuse");
-    reuse                = r == "none" ?
-                             Reuse::none :
-                             (r == "aggregates" ? Reuse::aggregates : Reuse::whole);
-    max_iterations       = prm.get_integer("Maximum iterations");
-    automatic_threshold  = prm.get_integer("Automatic threshold");
-    max_refinements      = prm.get_integer("Refinement steps");
-    estimate_condition   = prm.get_bool("Estimate condition number");
-    condition_iterations = prm.get_integer("Condition estimate iterations");
+    const std::string r      = prm.get("Preconditioner reuse");
+    reuse                    = r == "none" ?
+                                 Reuse::none :
+                                 (r == "aggregates" ? Reuse::aggregates : Reuse::whole);
+    max_iterations           = prm.get_integer("Maximum iterations");
+    automatic_threshold      = prm.get_integer("Automatic threshold");
+    max_refinements          = prm.get_integer("Refinement steps");
+    estimate_condition       = prm.get_bool("Estimate condition number");
+    condition_iterations     = prm.get_integer("Condition estimate iterations");
+    gmg_data.smoother_degree = prm.get_integer("Multigrid smoother degree");
+    gmg_data.coarse_size     = prm.get_integer("Multigrid coarse size");
     prm.leave_subsection();
   }
 
@@ -293,7 +314,8 @@ namespace bsmpm
     const std::uint64_t structure =
       reuse == Reuse::none ? 0 : matrix_structure(matrix);
     const bool same =
-      amg && reuse != Reuse::none &&
+      (method == Method::cg_gmg ? bool(gmg) : bool(amg)) &&
+      reuse != Reuse::none &&
       Utilities::MPI::min((amg_matrix == &matrix.trilinos_matrix() &&
                            amg_structure == structure) ?
                             1 :
@@ -301,9 +323,27 @@ namespace bsmpm
                           dof_handler.get_communicator()) == 1;
     if (same)
       {
-        if (reuse == Reuse::aggregates)
+        if (method == Method::cg_gmg)
+          {
+            // The same matrix object: the finest level smooths with its
+            // current values either way.
+            if (reuse == Reuse::aggregates)
+              gmg->reinit(matrix);
+            else
+              gmg->set_fine_matrix(matrix);
+          }
+        else if (reuse == Reuse::aggregates)
           amg->reinit();
         report.reused_preconditioner = true;
+        return;
+      }
+
+    if (method == Method::cg_gmg)
+      {
+        gmg = std::make_unique<GeometricMultigrid>();
+        gmg->initialize(matrix, dof_handler, gmg_data);
+        amg_matrix    = &matrix.trilinos_matrix();
+        amg_structure = structure;
         return;
       }
 
@@ -372,7 +412,10 @@ namespace bsmpm
       if (symmetric)
         {
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-          cg.solve(matrix, solution, rhs, *amg);
+          if (gmg)
+            cg.solve(matrix, solution, rhs, *gmg);
+          else
+            cg.solve(matrix, solution, rhs, *amg);
         }
       else
         {
@@ -383,7 +426,10 @@ namespace bsmpm
             control,
             SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
               100, /*right_preconditioning=*/true));
-          gmres.solve(matrix, solution, rhs, *amg);
+          if (gmg)
+            gmres.solve(matrix, solution, rhs, *gmg);
+          else
+            gmres.solve(matrix, solution, rhs, *amg);
         }
     };
     const double rhs_norm = rhs.l2_norm();
@@ -441,7 +487,7 @@ namespace bsmpm
             catch (const SolverControl::NoConvergence &)
               {
                 iterations = control.last_step();
-                amg.reset();
+                reset_preconditioner();
                 report.reused_preconditioner = false;
                 prepare_preconditioner(matrix, dof_handler, report);
               }
@@ -456,7 +502,7 @@ namespace bsmpm
               }
             catch (const SolverControl::NoConvergence &e)
               {
-                amg.reset();
+                reset_preconditioner();
                 last_solution.clear();
                 if (method == Method::automatic)
                   {
@@ -468,7 +514,10 @@ namespace bsmpm
                   }
                 AssertThrow(false,
                             ExcMessage(
-                              "Linear solver: CG + AMG did not converge in " +
+                              "Linear solver: CG + " +
+                              std::string(method == Method::cg_gmg ? "GMG" :
+                                                                     "AMG") +
+                              " did not converge in " +
                               std::to_string(iterations + e.last_step) +
                               " iterations (residual " +
                               std::to_string(e.last_residual / rhs_norm) +
@@ -481,9 +530,10 @@ namespace bsmpm
         // A hierarchy that has become much slower than when it was new is
         // rebuilt for the next solve.
         else if (report.iterations > (3 * fresh_iterations) / 2 + 2)
-          amg.reset();
+          reset_preconditioner();
 
-        report.method = symmetric ? "cg amg" : "gmres amg";
+        report.method = std::string(symmetric ? "cg" : "gmres") +
+                        (method == Method::cg_gmg ? " gmg" : " amg");
         last_solution = solution;
       }
 

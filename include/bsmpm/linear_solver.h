@@ -9,6 +9,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <bsmpm/geometric_multigrid.h>
+
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -21,8 +23,9 @@ namespace bsmpm
    * Solves the linear system of a load step: a sparse direct solver (MUMPS
    * through Amesos, KLU where MUMPS is missing), or CG preconditioned by
    * Trilinos ML's algebraic multigrid with the two translations of plane
-   * elasticity as near-null space. "automatic" takes the direct solver up to
-   * a number of unknowns and CG + AMG beyond.
+   * elasticity as near-null space, or CG preconditioned by a geometric
+   * multigrid on the uniform grid (GeometricMultigrid). "automatic" takes the
+   * direct solver up to a number of unknowns and CG + AMG beyond.
    */
   class LinearSolver
   {
@@ -31,6 +34,7 @@ namespace bsmpm
     {
       direct,
       cg_amg,
+      cg_gmg,
       automatic
     };
 
@@ -43,8 +47,8 @@ namespace bsmpm
       unsigned int refinement_steps = 0;
       /** ||K x - b|| / ||b|| after the solve. */
       double relative_residual = 0;
-      /** cg amg: whether the multigrid hierarchy of an earlier solve served
-       * again (see 'Preconditioner reuse'). */
+      /** cg amg, cg gmg: whether the multigrid hierarchy of an earlier solve
+       * served again (see 'Preconditioner reuse'). */
       bool reused_preconditioner = false;
     };
 
@@ -87,11 +91,20 @@ namespace bsmpm
                  TrilinosWrappers::MPI::Vector        &solution,
                  const TrilinosWrappers::MPI::Vector  &rhs) const;
 
-    /** cg amg: the multigrid preconditioner, kept for later solves. */
+    /** cg amg, cg gmg: the multigrid preconditioner, kept for later
+     * solves. */
     void
     prepare_preconditioner(const TrilinosWrappers::SparseMatrix &matrix,
                            const DoFHandler<2>                  &dof_handler,
                            Report                               &report) const;
+
+    /** Forgets the multigrid hierarchy (AMG or GMG). */
+    void
+    reset_preconditioner() const
+    {
+      amg.reset();
+      gmg.reset();
+    }
 
     /** The relative tolerance of CG ('Tolerance', or the automatic one). */
     double
@@ -122,6 +135,10 @@ namespace bsmpm
     mutable std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
     mutable const void   *amg_matrix    = nullptr;
     mutable std::uint64_t amg_structure = 0;
+    /** cg gmg: the geometric multigrid, kept like the AMG (amg_matrix and
+     * amg_structure describe the matrix either was built on). */
+    mutable std::unique_ptr<GeometricMultigrid> gmg;
+    GeometricMultigrid::AdditionalData          gmg_data;
     /** CG iterations of the solve for which the hierarchy was built. */
     mutable unsigned int fresh_iterations = 0;
     /** The automatic tolerance and the grid it was computed for. */
