@@ -27,6 +27,59 @@ namespace bsmpm
   {
     using VectorType = TrilinosWrappers::MPI::Vector;
 
+    /** Corners and cell counts of a grid of equal cells. */
+    struct UniformGrid
+    {
+      Point<2>                    lower, upper;
+      std::array<unsigned int, 2> cells;
+    };
+
+    /** The grid of @p dof_handler: equal coarse cells refined globally.
+     * Its corners and the coarse cell size come from the coarse cells,
+     * which every process holds. */
+    UniformGrid
+    uniform_grid(const DoFHandler<2> &dof_handler)
+    {
+      const auto &tria = dof_handler.get_triangulation();
+      AssertThrow(dof_handler.get_fe().n_components() == 2 &&
+                    dof_handler.get_fe().n_dofs_per_cell() == 8,
+                  ExcMessage("Geometric multigrid: needs Q1 elements with "
+                             "two components."));
+      UniformGrid grid;
+      grid.lower = tria.begin(0)->vertex(0);
+      grid.upper = grid.lower;
+      for (const auto &cell : tria.cell_iterators_on_level(0))
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              grid.lower[d] = std::min(grid.lower[d], cell->vertex(v)[d]);
+              grid.upper[d] = std::max(grid.upper[d], cell->vertex(v)[d]);
+            }
+      const unsigned int refinements = tria.n_global_levels() - 1;
+      const Tensor<1, 2> coarse_size =
+        tria.begin(0)->vertex(3) - tria.begin(0)->vertex(0);
+      for (unsigned int d = 0; d < 2; ++d)
+        grid.cells[d] = static_cast<unsigned int>(std::round(
+                          (grid.upper[d] - grid.lower[d]) / coarse_size[d]))
+                        << refinements;
+      AssertThrow(tria.n_global_active_cells() ==
+                    static_cast<types::global_cell_index>(grid.cells[0]) *
+                      grid.cells[1],
+                  ExcMessage("Geometric multigrid: the grid is not a uniform "
+                             "rectangle of equal cells."));
+      return grid;
+    }
+
+    /** Whether a level of @p cells is coarsened once more. */
+    bool
+    coarsens(const std::array<unsigned int, 2> &cells,
+             const unsigned int                 coarse_size)
+    {
+      return cells[0] % 2 == 0 && cells[1] % 2 == 0 &&
+             types::global_dof_index(2) * (cells[0] + 1) * (cells[1] + 1) >
+               coarse_size;
+    }
+
     /** A level's matrix as the Chebyshev smoother and the eigenvalue
      * estimate see it: a product with an Epetra matrix. The smoother
      * subscribes to this object, which the hierarchy owns, not to the
@@ -176,37 +229,13 @@ namespace bsmpm
     impl->communicator = dof_handler.get_communicator();
     auto &levels       = impl->levels;
 
-    // The grid: equal coarse cells refined globally. Its corners and the
-    // coarse cell size from the coarse cells, which every process holds.
-    const auto &tria = dof_handler.get_triangulation();
-    AssertThrow(dof_handler.get_fe().n_components() == 2 &&
-                  dof_handler.get_fe().n_dofs_per_cell() == 8,
-                ExcMessage("Geometric multigrid: needs Q1 elements with two "
-                           "components."));
-    Point<2> lower = tria.begin(0)->vertex(0), upper = lower;
-    for (const auto &cell : tria.cell_iterators_on_level(0))
-      for (const unsigned int v : cell->vertex_indices())
-        for (unsigned int d = 0; d < 2; ++d)
-          {
-            lower[d] = std::min(lower[d], cell->vertex(v)[d]);
-            upper[d] = std::max(upper[d], cell->vertex(v)[d]);
-          }
-    const unsigned int refinements = tria.n_global_levels() - 1;
-    const Tensor<1, 2> coarse_size =
-      tria.begin(0)->vertex(3) - tria.begin(0)->vertex(0);
-    auto fine = std::make_unique<Implementation::Level>();
-    fine->nx  = static_cast<unsigned int>(
-                 std::round((upper[0] - lower[0]) / coarse_size[0]))
-               << refinements;
-    fine->ny = static_cast<unsigned int>(
-                 std::round((upper[1] - lower[1]) / coarse_size[1]))
-               << refinements;
-    AssertThrow(tria.n_global_active_cells() ==
-                  static_cast<types::global_cell_index>(fine->nx) * fine->ny,
-                ExcMessage("Geometric multigrid: the grid is not a uniform "
-                           "rectangle of equal cells."));
-    const double h[2] = {(upper[0] - lower[0]) / fine->nx,
-                         (upper[1] - lower[1]) / fine->ny};
+    const UniformGrid grid  = uniform_grid(dof_handler);
+    const Point<2>   &lower = grid.lower, &upper = grid.upper;
+    auto              fine = std::make_unique<Implementation::Level>();
+    fine->nx               = grid.cells[0];
+    fine->ny               = grid.cells[1];
+    const double h[2]      = {(upper[0] - lower[0]) / fine->nx,
+                              (upper[1] - lower[1]) / fine->ny};
 
     // Where each locally owned DoF sits: a process owns only DoFs of its
     // own cells.
@@ -235,10 +264,8 @@ namespace bsmpm
     // the finer vertex at the same place.
     while (true)
       {
-        const auto                   &f = *levels.back();
-        const types::global_dof_index n_fine =
-          types::global_dof_index(2) * (f.nx + 1) * (f.ny + 1);
-        if (f.nx % 2 != 0 || f.ny % 2 != 0 || n_fine <= impl->data.coarse_size)
+        const auto &f = *levels.back();
+        if (!coarsens({{f.nx, f.ny}}, impl->data.coarse_size))
           break;
         auto c = std::make_unique<Implementation::Level>();
         c->nx  = f.nx / 2;
@@ -536,6 +563,19 @@ namespace bsmpm
   GeometricMultigrid::vmult(VectorType &dst, const VectorType &src) const
   {
     impl->cycle(0, dst, src);
+  }
+
+
+
+  unsigned int
+  GeometricMultigrid::n_coarse_levels(const DoFHandler<2>  &dof_handler,
+                                      const AdditionalData &data)
+  {
+    std::array<unsigned int, 2> cells = uniform_grid(dof_handler).cells;
+    unsigned int                n     = 0;
+    for (; coarsens(cells, data.coarse_size); ++n)
+      cells = {{cells[0] / 2, cells[1] / 2}};
+    return n;
   }
 
 

@@ -21,19 +21,22 @@ namespace bsmpm
   LinearSolver::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    prm.declare_entry("Method",
-                      "automatic",
-                      Patterns::Selection("direct|cg amg|cg gmg|automatic"),
-                      "direct: sparse LU (MUMPS, else KLU); cg amg: conjugate "
-                      "gradients with algebraic multigrid (Trilinos ML); cg "
-                      "gmg: conjugate gradients with a geometric multigrid "
-                      "V-cycle on the uniform grid (coarse grids of half the "
-                      "cells per direction while both counts are even, "
-                      "Galerkin coarse operators, Chebyshev-Jacobi "
-                      "smoother); automatic: direct up to 'Automatic "
-                      "threshold' unknowns, cg amg above (and direct if CG "
-                      "does not converge). Unsymmetric systems take GMRES "
-                      "with the same preconditioner.");
+    prm.declare_entry(
+      "Method",
+      "automatic",
+      Patterns::Selection("direct|cg amg|cg gmg|automatic"),
+      "direct: sparse LU (MUMPS, else KLU); cg amg: conjugate "
+      "gradients with algebraic multigrid (Trilinos ML); cg "
+      "gmg: conjugate gradients with a geometric multigrid "
+      "V-cycle on the uniform grid (coarse grids of half the "
+      "cells per direction while both counts are even, "
+      "Galerkin coarse operators, Chebyshev-Jacobi "
+      "smoother); automatic: direct up to 'Automatic "
+      "threshold' unknowns, above cg gmg if the grid can be "
+      "coarsened at least once (even cell counts, more than "
+      "'Multigrid coarse size' unknowns), else cg amg (and "
+      "direct if CG does not converge). Unsymmetric systems take GMRES "
+      "with the same preconditioner.");
     prm.declare_entry(
       "Tolerance",
       "automatic",
@@ -73,13 +76,14 @@ namespace bsmpm
                       Patterns::Integer(1),
                       "cg gmg: a level with at most this many unknowns is "
                       "not coarsened further but factorised (KLU).");
-    prm.declare_entry("Automatic threshold",
-                      "1000",
-                      Patterns::Integer(0),
-                      "automatic: number of unknowns above which CG + AMG "
-                      "replaces the direct solver (measured crossover on the "
-                      "plate scene: AMG 1.2x faster at 1250 unknowns, 3.3x "
-                      "at 74k, doc/benchmarks.md).");
+    prm.declare_entry(
+      "Automatic threshold",
+      "1000",
+      Patterns::Integer(0),
+      "automatic: number of unknowns above which CG + "
+      "multigrid replaces the direct solver (measured crossover on the "
+      "plate scene: AMG 1.2x faster at 1250 unknowns, 3.3x "
+      "at 74k, doc/benchmarks.md).");
     prm.declare_entry("Estimate condition number",
                       "false",
                       Patterns::Bool(),
@@ -301,6 +305,30 @@ namespace bsmpm
 
 
 
+  bool
+  LinearSolver::geometric_multigrid(const DoFHandler<2> &dof_handler) const
+  {
+    if (method == Method::cg_gmg)
+      return true;
+    if (method != Method::automatic)
+      return false;
+    // A grid that coarsens at least once gets the geometric multigrid
+    // (iterations independent of h and of the cut fractions); one with odd
+    // cell counts, which the geometric levels cannot halve, ML.
+    if (checked_grid != &dof_handler.get_triangulation() ||
+        checked_cells !=
+          dof_handler.get_triangulation().n_global_active_cells())
+      {
+        checked_grid  = &dof_handler.get_triangulation();
+        checked_cells = dof_handler.get_triangulation().n_global_active_cells();
+        grid_coarsens =
+          GeometricMultigrid::n_coarse_levels(dof_handler, gmg_data) > 0;
+      }
+    return grid_coarsens;
+  }
+
+
+
   void
   LinearSolver::prepare_preconditioner(
     const TrilinosWrappers::SparseMatrix &matrix,
@@ -313,9 +341,9 @@ namespace bsmpm
     // Newton iterations while the same cells are active.
     const std::uint64_t structure =
       reuse == Reuse::none ? 0 : matrix_structure(matrix);
+    const bool geometric = geometric_multigrid(dof_handler);
     const bool same =
-      (method == Method::cg_gmg ? bool(gmg) : bool(amg)) &&
-      reuse != Reuse::none &&
+      (geometric ? bool(gmg) : bool(amg)) && reuse != Reuse::none &&
       Utilities::MPI::min((amg_matrix == &matrix.trilinos_matrix() &&
                            amg_structure == structure) ?
                             1 :
@@ -323,7 +351,7 @@ namespace bsmpm
                           dof_handler.get_communicator()) == 1;
     if (same)
       {
-        if (method == Method::cg_gmg)
+        if (geometric)
           {
             // The same matrix object: the finest level smooths with its
             // current values either way.
@@ -338,7 +366,8 @@ namespace bsmpm
         return;
       }
 
-    if (method == Method::cg_gmg)
+    reset_preconditioner();
+    if (geometric)
       {
         gmg = std::make_unique<GeometricMultigrid>();
         gmg->initialize(matrix, dof_handler, gmg_data);
@@ -515,8 +544,9 @@ namespace bsmpm
                 AssertThrow(false,
                             ExcMessage(
                               "Linear solver: CG + " +
-                              std::string(method == Method::cg_gmg ? "GMG" :
-                                                                     "AMG") +
+                              std::string(geometric_multigrid(dof_handler) ?
+                                            "GMG" :
+                                            "AMG") +
                               " did not converge in " +
                               std::to_string(iterations + e.last_step) +
                               " iterations (residual " +
@@ -533,7 +563,7 @@ namespace bsmpm
           reset_preconditioner();
 
         report.method = std::string(symmetric ? "cg" : "gmres") +
-                        (method == Method::cg_gmg ? " gmg" : " amg");
+                        (geometric_multigrid(dof_handler) ? " gmg" : " amg");
         last_solution = solution;
       }
 

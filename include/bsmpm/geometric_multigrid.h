@@ -102,6 +102,13 @@ namespace bsmpm
     unsigned int
     n_levels() const;
 
+    /** How many levels coarser than @p dof_handler's grid initialize()
+     * would make: 0 if the grid cannot be coarsened (an odd count of
+     * cells) or is already at most 'coarse size' unknowns. */
+    static unsigned int
+    n_coarse_levels(const DoFHandler<2>  &dof_handler,
+                    const AdditionalData &data);
+
     /** Unknowns per level, finest first, e.g. "33282 8450 2178 578". */
     std::string
     level_sizes() const;

@@ -25,7 +25,8 @@ namespace bsmpm
    * Trilinos ML's algebraic multigrid with the two translations of plane
    * elasticity as near-null space, or CG preconditioned by a geometric
    * multigrid on the uniform grid (GeometricMultigrid). "automatic" takes the
-   * direct solver up to a number of unknowns and CG + AMG beyond.
+   * direct solver up to a number of unknowns and CG beyond, with the
+   * geometric multigrid where the grid can be coarsened and ML elsewhere.
    */
   class LinearSolver
   {
@@ -98,6 +99,11 @@ namespace bsmpm
                            const DoFHandler<2>                  &dof_handler,
                            Report                               &report) const;
 
+    /** Whether CG takes the geometric multigrid (cg gmg, or automatic on
+     * a grid that coarsens at least once) rather than ML. */
+    bool
+    geometric_multigrid(const DoFHandler<2> &dof_handler) const;
+
     /** Forgets the multigrid hierarchy (AMG or GMG). */
     void
     reset_preconditioner() const
@@ -139,6 +145,10 @@ namespace bsmpm
      * amg_structure describe the matrix either was built on). */
     mutable std::unique_ptr<GeometricMultigrid> gmg;
     GeometricMultigrid::AdditionalData          gmg_data;
+    /** automatic: whether the grid last asked about coarsens. */
+    mutable const void              *checked_grid  = nullptr;
+    mutable types::global_cell_index checked_cells = 0;
+    mutable bool                     grid_coarsens = false;
     /** CG iterations of the solve for which the hierarchy was built. */
     mutable unsigned int fresh_iterations = 0;
     /** The automatic tolerance and the grid it was computed for. */
