@@ -27,10 +27,16 @@ namespace bsmpm
                                                  parts.material.stiffness());
 
     const MPI_Comm comm = grid.mpi_communicator();
-    make_matrix(
-      std::vector<bool>(grid.triangulation().n_active_cells(), false));
+    // With a ghost penalty the first assembly makes the matrix, with the
+    // couplings across the faces of the weak cells it then knows: making
+    // it here too would double the set-up of the matrix.
+    const bool fits =
+      parts.implicit_boundary.fits_prescribed_displacement(parts.curves);
+    if (!parts.ghost_penalty.enabled() || fits)
+      make_matrix(
+        std::vector<bool>(grid.triangulation().n_active_cells(), false));
     system_rhs.reinit(grid.locally_owned_dofs(), comm);
-    if (parts.implicit_boundary.fits_prescribed_displacement(parts.curves))
+    if (fits)
       boundary_fit_matrix.reinit(system_matrix);
   }
 
@@ -162,7 +168,7 @@ namespace bsmpm
         TimerOutput::Scope      t(timer, "ghost penalty");
         const std::vector<bool> weak =
           parts.ghost_penalty.weak_cells(grid, quality);
-        bool held = true;
+        bool held = !coupled_faces.empty();
         for (unsigned int c = 0; c < weak.size() && held; ++c)
           held = !weak[c] || coupled_faces[c];
         if (Utilities::MPI::min(held ? 1 : 0, grid.mpi_communicator()) == 0)
