@@ -11,6 +11,7 @@
 #include <bsmpm/material_point_layout.h>
 #include <bsmpm/q1_cell_kernel.h>
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -307,8 +308,27 @@ namespace bsmpm
 
     /** By tracked slot: set_rigid_increments(). */
     std::vector<std::pair<bool, Tensor<1, 2>>> rigid_increments;
-    /** Slot of each particle id in the tracked list, or invalid. */
-    std::vector<unsigned int> tracked_slot;
+    /** Whether a particle id is in the tracked list: a bit per id, so
+     * that the test in the loops over all points costs little memory. */
+    std::vector<bool> is_tracked;
+    /** (id, slot in the tracked list) of the tracked points, by id. */
+    std::vector<std::pair<types::particle_index, unsigned int>> tracked_slots;
+
+    /** Slot of particle @p id in the tracked list, or invalid. */
+    unsigned int
+    tracked_slot(const types::particle_index id) const
+    {
+      if (id >= is_tracked.size() || !is_tracked[id])
+        return numbers::invalid_unsigned_int;
+      return std::lower_bound(tracked_slots.begin(),
+                              tracked_slots.end(),
+                              id,
+                              [](const auto                 &entry,
+                                 const types::particle_index i) {
+                                return entry.first < i;
+                              })
+        ->second;
+    }
     /** Length of the tracked list given to track(). */
     unsigned int n_tracked_slots = 0;
     /** State of the locally owned tracked points: slot, x, y, and stress. */
