@@ -490,18 +490,26 @@ namespace
    * others) at MPI_Init: 0.45-0.95 s on the 2-core test machine, more than
    * a small scene's whole run. One process needs neither: it talks only to
    * itself. Open MPI reads its settings from the environment at MPI_Init,
-   * so they are set here, each only if the user has not set it, and never
-   * under a launcher (mpirun, srun), whose processes must reach each other.
+   * so they are set here, each only if the user has not set it. Under
+   * mpirun with every process on this node, the processes still need the
+   * shared-memory transport, but not the probing of UCX, the network layer
+   * of clusters: the point-to-point layer ob1 alone (0.25 s less at
+   * np = 2 there, doc/benchmarks.md). Under another launcher nothing is set.
    */
   void
-  start_singleton_quickly()
+  start_mpi_quickly()
   {
 #ifdef OMPI_MAJOR_VERSION
-    for (const char *launched : {"OMPI_COMM_WORLD_SIZE",
-                                 "PMIX_RANK",
-                                 "PMI_RANK",
-                                 "PMI_SIZE",
-                                 "SLURM_PROCID"})
+    const char *size  = std::getenv("OMPI_COMM_WORLD_SIZE");
+    const char *local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    if (size != nullptr)
+      {
+        if (local != nullptr && std::string(size) == local)
+          setenv("OMPI_MCA_pml", "ob1", /*overwrite=*/0);
+        return;
+      }
+    for (const char *launched :
+         {"PMIX_RANK", "PMI_RANK", "PMI_SIZE", "SLURM_PROCID"})
       if (std::getenv(launched) != nullptr)
         return;
     // No daemon; the point-to-point layer over the self transport only.
@@ -549,7 +557,7 @@ main(int argc, char **argv)
       return 0;
     }
 
-  start_singleton_quickly();
+  start_mpi_quickly();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   ErrorChannel errors;
