@@ -181,35 +181,6 @@ namespace bsmpm
                                  text + ")"));
         }
 
-    index_cells();
-  }
-
-
-
-  void
-  BackgroundGrid::balance(
-    const std::function<unsigned int(const std::array<unsigned int, 2> &)>
-      &weight)
-  {
-    if (Utilities::MPI::n_mpi_processes(communicator) == 1)
-      return;
-    // p4est cuts its space-filling curve into pieces of equal weight; the
-    // weight signal is asked for the locally owned cells only.
-    auto connection = tria.signals.weight.connect(
-      [&](const Triangulation<2>::cell_iterator &cell,
-          const Triangulation<2>::CellStatus) {
-        return weight(cell_index(cell->center()));
-      });
-    tria.repartition();
-    connection.disconnect();
-    index_cells();
-  }
-
-
-
-  void
-  BackgroundGrid::index_cells()
-  {
     dofs.distribute_dofs(finite_element);
     owned_dofs = dofs.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dofs, relevant_dofs);

@@ -213,8 +213,6 @@ namespace bsmpm
       // Curves given by positions exist before the material points, which
       // they may trim; curves through material points after them.
       boundary_curves.create_initial_curves(region, grid);
-      if (!checkpoint.resuming())
-        balance_grid();
       points.generate(layout, region, [this](const Point<2> &p) {
         return boundary_curves.trims(p);
       });
@@ -236,15 +234,6 @@ namespace bsmpm
           // The checkpoint's points replace those generated as at the
           // start, which gave the same ids, slots and initial positions.
           checkpoint.read_points(points);
-          // Triangulation::load() partitions the grid by cells: balance it
-          // as the interrupted run did, taking the points along.
-          if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-            {
-              auto &handler = points.particle_handler();
-              handler.prepare_for_coarsening_and_refinement();
-              balance_grid();
-              handler.unpack_after_coarsening_and_refinement();
-            }
           if (!tracked.empty())
             points.track(tracked);
         }
@@ -347,40 +336,6 @@ namespace bsmpm
                            "condition and no fixed, roller or displacement "
                            "condition on a boundary curve. Its stiffness "
                            "cannot resist rigid motion; add a support."));
-  }
-
-
-
-  void
-  Scene::balance_grid()
-  {
-    if (Utilities::MPI::n_mpi_processes(communicator) == 1)
-      return;
-    // p4est gives the processes equal numbers of cells, but most of a
-    // step's work is per point (creating, moving and integrating them): on
-    // scene 4a at np = 2 the first process held 71 % of the points. Each
-    // cell weighs the points it will hold plus what a cell costs in the
-    // solve, the matrix and the grid, about as much as 8 points
-    // (doc/benchmarks.md).
-    constexpr unsigned int    cell_weight = 8;
-    const unsigned int        nx          = grid.n_cells(0);
-    std::vector<unsigned int> n_points(std::size_t(nx) * grid.n_cells(1), 0);
-    layout.for_each_point(
-      grid,
-      region,
-      [this](const MaterialPointLayout::CellIndex &ij) {
-        return grid.locally_owned_cell(ij) != grid.dof_handler().end();
-      },
-      [&](const Point<2> &p, const double, const unsigned long) {
-        if (grid.contains(p) && !boundary_curves.trims(p))
-          {
-            const auto ij = grid.cell_index(p);
-            ++n_points[std::size_t(ij[1]) * nx + ij[0]];
-          }
-      });
-    grid.balance([&](const std::array<unsigned int, 2> &ij) {
-      return cell_weight + n_points[std::size_t(ij[1]) * nx + ij[0]];
-    });
   }
 
 

@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,16 +58,6 @@ namespace bsmpm
      * data attached to its cells. */
     void
     create(const std::string &saved_triangulation = "");
-
-    /** Gives each process a piece of the grid of about equal total
-     * @p weight (a function of the cell index (i, j), asked for the locally
-     * owned cells) instead of about equal numbers of cells, and distributes
-     * the DoFs again. Nothing else may hold cells or DoFs of the grid yet.
-     * Nothing happens on one process. */
-    void
-    balance(
-      const std::function<unsigned int(const std::array<unsigned int, 2> &)>
-        &weight);
 
     const parallel::distributed::Triangulation<2> &
     triangulation() const
@@ -228,11 +217,6 @@ namespace bsmpm
     has_face_conditions() const;
 
   private:
-    /** Distributes the DoFs and fills the tables of owned cells and cell
-     * owners, after the triangulation is made or repartitioned. */
-    void
-    index_cells();
-
     MPI_Comm                                communicator;
     parallel::distributed::Triangulation<2> tria;
     FESystem<2>                             finite_element;

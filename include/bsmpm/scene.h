@@ -96,10 +96,6 @@ namespace bsmpm
 
     void
     check_supports() const;
-    /** At np > 1, repartitions the grid so that each process gets about
-     * the same number of material points (before they are created). */
-    void
-    balance_grid();
     void
     fit_prescribed_displacement(const double increment_factor);
     /** Material moments of every cell, plain or by the cut-cell quadrature. */
