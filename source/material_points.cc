@@ -3,11 +3,8 @@
 #include <bsmpm/material_points.h>
 #include <bsmpm/point_sorting.h>
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -22,33 +19,6 @@ namespace bsmpm
       std::ostringstream s;
       s << '(' << p[0] << ", " << p[1] << ')';
       return s.str();
-    }
-
-
-
-    /**
-     * Asks the kernel to back the whole 2 MiB pages inside [begin, begin +
-     * bytes) by huge pages when they are first touched. Where transparent
-     * huge pages are enabled only on request ("madvise", Debian's default),
-     * the point storage is otherwise faulted in 4 KiB at a time: 50,000 page
-     * faults and a third of the set-up of 676,000 points
-     * (doc/benchmarks.md). Only a hint: a range the kernel cannot advise is
-     * left as it is.
-     */
-    void
-    advise_huge_pages(const void *begin, const std::size_t bytes)
-    {
-#ifdef MADV_HUGEPAGE
-      constexpr std::uintptr_t huge  = std::uintptr_t(1) << 21;
-      const std::uintptr_t     first = reinterpret_cast<std::uintptr_t>(begin);
-      const std::uintptr_t     start = (first + huge - 1) & ~(huge - 1);
-      const std::uintptr_t     end   = (first + bytes) & ~(huge - 1);
-      if (end > start)
-        madvise(reinterpret_cast<void *>(start), end - start, MADV_HUGEPAGE);
-#else
-      (void)begin;
-      (void)bytes;
-#endif
     }
   } // namespace
 
@@ -116,23 +86,8 @@ namespace bsmpm
     // Room for this process' share at once: growing the storage point by
     // point costs more than the insertion itself.
     const unsigned int n_cells = grid.n_cells(0) * grid.n_cells(1);
-    const std::size_t  room =
-      next_id / n_cells * grid.triangulation().n_locally_owned_active_cells();
-    particles.reserve(room);
-    {
-      // The pool keeps each kind of datum of all points in one array, a
-      // slot per point: advise those arrays while they are untouched.
-      auto           &pool   = particles.get_property_pool();
-      auto            handle = pool.register_particle();
-      const Point<2> &x      = pool.get_location(handle);
-      const Point<2> &xi     = pool.get_reference_location(handle);
-      const double   *props  = pool.get_properties(handle).data();
-      advise_huge_pages(&x - handle, room * sizeof(Point<2>));
-      advise_huge_pages(&xi - handle, room * sizeof(Point<2>));
-      advise_huge_pages(props - std::size_t(handle) * n_point_properties,
-                        room * n_point_properties * sizeof(double));
-      pool.deregister_particle(handle);
-    }
+    particles.reserve(next_id / n_cells *
+                      grid.triangulation().n_locally_owned_active_cells());
     types::particle_index n_here = 0;
     layout.for_each_point(
       grid,
