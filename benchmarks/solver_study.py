@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""CG + AMG iteration counts of bsmpm's linear solver against the cell size,
+"""CG iteration counts of bsmpm's linear solver against the cell size,
 the fill fraction of cut cells and the stopping tolerance (doc/benchmarks.md).
 
   h:          scene 4a (plate with a hole, 8^2 points per cell, one step)
@@ -13,10 +13,13 @@ the fill fraction of cut cells and the stopping tolerance (doc/benchmarks.md).
               relative tolerances 1e-4 .. 1e-12 and the automatic one:
               how far each moves the errors from those of the 1e-12 solve.
 
-Every run forces Method = cg amg (also below the automatic threshold). Prints
-tables in Markdown; --csv DIR writes them as CSV too.
+Every run forces the method of --method, "cg amg" (ML, the default here, as
+in the tables of doc/benchmarks.md) or "cg gmg" (the geometric multigrid),
+also below the automatic threshold. Prints tables in Markdown; --csv DIR
+writes them as CSV too.
 
 Usage: solver_study.py --bsmpm BUILD/bsmpm [--only h,fill,tolerance]
+                       [--method "cg amg"|"cg gmg"]
 """
 import argparse
 import csv
@@ -39,9 +42,12 @@ COLUMN = [os.path.join(PRM, "column-self-weight.prm"),
           "--set", "Loading/Load steps=3"]
 
 
+METHOD = "cg amg"
+
+
 def run(bsmpm, args, sets, directory):
     command = [bsmpm] + args
-    for s in sets + ["Linear solver/Method=cg amg", "Output/Interval=0",
+    for s in sets + [f"Linear solver/Method={METHOD}", "Output/Interval=0",
                      f"Output/Directory={directory}",
                      "Output/Timing summary=false"]:
         command += ["--set", s]
@@ -119,7 +125,11 @@ def main():
     parser.add_argument("--bsmpm", required=True)
     parser.add_argument("--only", default="h,fill,tolerance")
     parser.add_argument("--csv")
+    parser.add_argument("--method", default="cg amg",
+                        choices=["cg amg", "cg gmg"])
     args = parser.parse_args()
+    global METHOD
+    METHOD = args.method
     tables = {}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.only.split(","):
