@@ -23,6 +23,22 @@
 
 namespace bsmpm
 {
+  bool
+  couples_off_diagonal(const Epetra_CrsMatrix &matrix, const int row)
+  {
+    int     n;
+    double *values;
+    int    *columns;
+    matrix.ExtractMyRowView(row, n, values, columns);
+    const int diagonal = matrix.LCID(matrix.GRID(row));
+    for (int k = 0; k < n; ++k)
+      if (columns[k] != diagonal && values[k] != 0.)
+        return true;
+    return false;
+  }
+
+
+
   namespace
   {
     using VectorType = TrilinosWrappers::MPI::Vector;
@@ -131,21 +147,9 @@ namespace bsmpm
     std::vector<bool>
     decoupled_rows(const Epetra_CrsMatrix &matrix)
     {
-      std::vector<bool> decoupled(matrix.NumMyRows(), true);
+      std::vector<bool> decoupled(matrix.NumMyRows());
       for (int row = 0; row < matrix.NumMyRows(); ++row)
-        {
-          int     n;
-          double *values;
-          int    *columns;
-          matrix.ExtractMyRowView(row, n, values, columns);
-          const int diagonal = matrix.LCID(matrix.GRID(row));
-          for (int k = 0; k < n; ++k)
-            if (columns[k] != diagonal && values[k] != 0.)
-              {
-                decoupled[row] = false;
-                break;
-              }
-        }
+        decoupled[row] = !couples_off_diagonal(matrix, row);
       return decoupled;
     }
 

@@ -290,14 +290,9 @@ namespace bsmpm
           double *values;
           int    *columns;
           A.ExtractMyRowView(row, n, values, columns);
-          const int diagonal = A.LCID(A.GRID(row));
-          bool      coupled  = false;
           for (int k = 0; k < n; ++k)
-            {
-              mix(columns[k]);
-              coupled = coupled || (columns[k] != diagonal && values[k] != 0.);
-            }
-          mix(coupled ? 0xc0ull : 0xdeull);
+            mix(columns[k]);
+          mix(couples_off_diagonal(A, row) ? 0xc0ull : 0xdeull);
         }
       return hash;
     }
@@ -315,16 +310,7 @@ namespace bsmpm
     // A grid that coarsens at least once gets the geometric multigrid
     // (iterations independent of h and of the cut fractions); one with odd
     // cell counts, which the geometric levels cannot halve, ML.
-    if (checked_grid != &dof_handler.get_triangulation() ||
-        checked_cells !=
-          dof_handler.get_triangulation().n_global_active_cells())
-      {
-        checked_grid  = &dof_handler.get_triangulation();
-        checked_cells = dof_handler.get_triangulation().n_global_active_cells();
-        grid_coarsens =
-          GeometricMultigrid::n_coarse_levels(dof_handler, gmg_data) > 0;
-      }
-    return grid_coarsens;
+    return GeometricMultigrid::n_coarse_levels(dof_handler, gmg_data) > 0;
   }
 
 

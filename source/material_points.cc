@@ -432,24 +432,19 @@ namespace bsmpm
     is_tracked.assign(next_id, false);
     tracked_slots.clear();
     n_tracked_slots = ids.size();
-    for (unsigned int slot = 0; slot < ids.size(); ++slot)
+    // From the last slot to the first: an id listed twice keeps its last.
+    for (unsigned int slot = ids.size(); slot-- > 0;)
       {
         AssertThrow(ids[slot] < next_id,
                     ExcMessage("Tracked point id " + std::to_string(ids[slot]) +
                                " does not exist."));
-        is_tracked[ids[slot]] = true;
-        tracked_slots.emplace_back(ids[slot], slot);
+        if (!is_tracked[ids[slot]])
+          {
+            is_tracked[ids[slot]] = true;
+            tracked_slots.emplace_back(ids[slot], slot);
+          }
       }
-    // An id listed twice keeps its last slot.
     std::sort(tracked_slots.begin(), tracked_slots.end());
-    std::reverse(tracked_slots.begin(), tracked_slots.end());
-    tracked_slots.erase(std::unique(tracked_slots.begin(),
-                                    tracked_slots.end(),
-                                    [](const auto &a, const auto &b) {
-                                      return a.first == b.first;
-                                    }),
-                        tracked_slots.end());
-    std::reverse(tracked_slots.begin(), tracked_slots.end());
     tracked_local.clear();
     for (const auto &particle : particles)
       record_if_tracked(particle.get_id(),

@@ -8,12 +8,23 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Epetra_CrsMatrix.h>
+
 #include <memory>
 #include <string>
 
 namespace bsmpm
 {
   using namespace dealii;
+
+  /**
+   * Whether the locally owned row @p row (a local index) of @p matrix has a
+   * nonzero entry off the diagonal. A row without one is decoupled: a
+   * constrained DoF, or a DoF of cells without material. Entries that
+   * happen to vanish in a coupled row do not count.
+   */
+  bool
+  couples_off_diagonal(const Epetra_CrsMatrix &matrix, const int row);
 
   /**
    * A geometric multigrid V-cycle for the Q1 elasticity systems of a

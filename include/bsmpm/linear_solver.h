@@ -145,10 +145,6 @@ namespace bsmpm
      * amg_structure describe the matrix either was built on). */
     mutable std::unique_ptr<GeometricMultigrid> gmg;
     GeometricMultigrid::AdditionalData          gmg_data;
-    /** automatic: whether the grid last asked about coarsens. */
-    mutable const void              *checked_grid  = nullptr;
-    mutable types::global_cell_index checked_cells = 0;
-    mutable bool                     grid_coarsens = false;
     /** CG iterations of the solve for which the hierarchy was built. */
     mutable unsigned int fresh_iterations = 0;
     /** The automatic tolerance and the grid it was computed for. */
