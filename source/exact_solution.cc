@@ -5,6 +5,7 @@
 
 #include <boost/math/special_functions/lambert_w.hpp>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -407,21 +408,38 @@ namespace bsmpm
 
 
 
+  namespace
+  {
+    // cos(k beta) and sin(k beta), k = 1 .. 4, of the polar angle beta of d,
+    // by the multiple-angle formulas: no atan2, sin or cos per point.
+    std::array<std::array<double, 2>, 5>
+    multiple_angles(const Tensor<1, 2> &d)
+    {
+      const double                         r = d.norm();
+      std::array<std::array<double, 2>, 5> cs;
+      cs[0] = {{1., 0.}};
+      cs[1] = {{d[0] / r, d[1] / r}};
+      for (unsigned int k = 2; k < 5; ++k) // cos/sin of (k - 1) beta + beta
+        cs[k] = {{cs[k - 1][0] * cs[1][0] - cs[k - 1][1] * cs[1][1],
+                  cs[k - 1][1] * cs[1][0] + cs[k - 1][0] * cs[1][1]}};
+      return cs;
+    }
+  } // namespace
+
+
+
   Tensor<1, 2>
   KirschPlate::displacement(const Point<2> &X) const
   {
-    const Tensor<1, 2> d    = X - center;
-    const double       r    = d.norm();
-    const double       beta = std::atan2(d[1], d[0]);
-    const double       f    = S * a / (8 * mu);
-    const double       q = a / r, q3 = q * q * q;
+    const Tensor<1, 2> d  = X - center;
+    const auto         cs = multiple_angles(d);
+    const double       f  = S * a / (8 * mu);
+    const double       q = a / d.norm(), q3 = q * q * q;
     return Tensor<1, 2>(
-      {f * ((kappa + 1) * std::cos(beta) / q +
-            2 * q * ((1 + kappa) * std::cos(beta) + std::cos(3 * beta)) -
-            2 * q3 * std::cos(3 * beta)),
-       f * ((kappa - 3) * std::sin(beta) / q +
-            2 * q * ((1 - kappa) * std::sin(beta) + std::sin(3 * beta)) -
-            2 * q3 * std::sin(3 * beta))});
+      {f * ((kappa + 1) * cs[1][0] / q +
+            2 * q * ((1 + kappa) * cs[1][0] + cs[3][0]) - 2 * q3 * cs[3][0]),
+       f * ((kappa - 3) * cs[1][1] / q +
+            2 * q * ((1 - kappa) * cs[1][1] + cs[3][1]) - 2 * q3 * cs[3][1])});
   }
 
 
@@ -429,17 +447,13 @@ namespace bsmpm
   SymmetricTensor<2, 2>
   KirschPlate::stress(const Point<2> &X) const
   {
-    const Tensor<1, 2>    d    = X - center;
-    const double          r2   = d.norm_square();
-    const double          beta = std::atan2(d[1], d[0]);
-    const double          q2 = a * a / r2, q4 = 1.5 * q2 * q2;
+    const Tensor<1, 2>    d  = X - center;
+    const auto            cs = multiple_angles(d);
+    const double          q2 = a * a / d.norm_square(), q4 = 1.5 * q2 * q2;
     SymmetricTensor<2, 2> sigma;
-    sigma[0][0] = S - S * q2 * (1.5 * std::cos(2 * beta) + std::cos(4 * beta)) +
-                  S * q4 * std::cos(4 * beta);
-    sigma[1][1] = -S * q2 * (0.5 * std::cos(2 * beta) - std::cos(4 * beta)) -
-                  S * q4 * std::cos(4 * beta);
-    sigma[0][1] = -S * q2 * (0.5 * std::sin(2 * beta) + std::sin(4 * beta)) +
-                  S * q4 * std::sin(4 * beta);
+    sigma[0][0] = S - S * q2 * (1.5 * cs[2][0] + cs[4][0]) + S * q4 * cs[4][0];
+    sigma[1][1] = -S * q2 * (0.5 * cs[2][0] - cs[4][0]) - S * q4 * cs[4][0];
+    sigma[0][1] = -S * q2 * (0.5 * cs[2][1] + cs[4][1]) + S * q4 * cs[4][1];
     return sigma;
   }
 
