@@ -464,6 +464,9 @@ namespace bsmpm
     else
       {
         prepare_preconditioner(matrix, dof_handler, report);
+        // Which multigrid this solve uses, for the messages below (the
+        // hierarchy itself may be reset before they are written).
+        const bool geometric = geometric_multigrid(dof_handler);
 
         // The previous solution is the first guess when it leaves a smaller
         // residual than zero does (consecutive load steps of similar
@@ -530,9 +533,7 @@ namespace bsmpm
                 AssertThrow(false,
                             ExcMessage(
                               "Linear solver: CG + " +
-                              std::string(geometric_multigrid(dof_handler) ?
-                                            "GMG" :
-                                            "AMG") +
+                              std::string(geometric ? "GMG" : "AMG") +
                               " did not converge in " +
                               std::to_string(iterations + e.last_step) +
                               " iterations (residual " +
@@ -549,7 +550,7 @@ namespace bsmpm
           reset_preconditioner();
 
         report.method = std::string(symmetric ? "cg" : "gmres") +
-                        (geometric_multigrid(dof_handler) ? " gmg" : " amg");
+                        (geometric ? " gmg" : " amg");
         last_solution = solution;
       }
 
