@@ -46,7 +46,7 @@ namespace bsmpm
 
     /** First line of every archive: what it is and in which format. */
     const std::string  magic   = "bsmpm checkpoint";
-    const unsigned int version = 4;
+    const unsigned int version = 5;
 
     /** What both archives start with, checked before anything else is
      * read. */
@@ -177,11 +177,12 @@ namespace bsmpm
 
 
   void
-  Checkpoint::write(const unsigned int    step,
-                    const BackgroundGrid &grid,
-                    MaterialPoints       &points,
-                    const RunSummary     &summary,
-                    const OutputWriter   &output)
+  Checkpoint::write(const unsigned int         step,
+                    const BackgroundGrid      &grid,
+                    MaterialPoints            &points,
+                    const RunSummary          &summary,
+                    const OutputWriter        &output,
+                    const std::vector<CellId> &weak_cells)
   {
     const bool     root = Utilities::MPI::this_mpi_process(communicator) == 0;
     const fs::path target =
@@ -204,6 +205,10 @@ namespace bsmpm
     auto &handler = points.particle_handler();
     handler.prepare_for_serialization();
     grid.triangulation().save((temporary / "triangulation").string());
+
+    std::vector<CellId> all_weak_cells;
+    for (const auto &part : Utilities::MPI::gather(communicator, weak_cells, 0))
+      all_weak_cells.insert(all_weak_cells.end(), part.begin(), part.end());
 
     if (root)
       {
@@ -229,20 +234,14 @@ namespace bsmpm
         });
         write("state", [&](std::ostream &out) {
           boost::archive::binary_oarchive archive(out);
-          archive << header << summary << output;
+          archive << header << summary << output << all_weak_cells;
         });
         write("parameters.prm", [&](std::ostream &out) { out << parameters; });
 
-        // Publish it, then keep only it and the one before.
+        // Keep only the one before, then publish the new one: removing
+        // the older ones first means a run killed at any moment leaves at
+        // most two complete checkpoints, the newest of them intact.
         std::error_code code;
-        if (error.empty())
-          {
-            fs::remove_all(target, code);
-            fs::rename(temporary, target, code);
-            if (code)
-              error = "Checkpoint: cannot rename '" + temporary.string() +
-                      "': " + code.message() + ".";
-          }
         if (error.empty())
           for (const auto &entry :
                fs::directory_iterator(output_directory, code))
@@ -251,10 +250,18 @@ namespace bsmpm
               const std::string n = p.filename().string();
               const bool        stale_temporary =
                 n.rfind("checkpoint-", 0) == 0 && p.extension() == ".tmp";
-              if ((step_of(p) >= 0 || stale_temporary) &&
-                  n != target.filename().string() && n != previous)
+              if ((step_of(p) >= 0 || stale_temporary) && p != temporary &&
+                  n != previous)
                 fs::remove_all(p, code);
             }
+        if (error.empty())
+          {
+            fs::remove_all(target, code);
+            fs::rename(temporary, target, code);
+            if (code)
+              error = "Checkpoint: cannot rename '" + temporary.string() +
+                      "': " + code.message() + ".";
+          }
       }
     throw_if_root_failed(error, communicator);
     previous = target.filename().string();
@@ -369,7 +376,9 @@ namespace bsmpm
 
 
   unsigned int
-  Checkpoint::read_state(RunSummary &summary, OutputWriter &output) const
+  Checkpoint::read_state(RunSummary          &summary,
+                         OutputWriter        &output,
+                         std::vector<CellId> &weak_cells) const
   {
     std::ifstream in(resume_directory + "/state", std::ios::binary);
     AssertThrow(in,
@@ -377,7 +386,7 @@ namespace bsmpm
                            "/state'."));
     boost::archive::binary_iarchive archive(in);
     const Header header = read_header(archive, resume_directory);
-    archive >> summary >> output;
+    archive >> summary >> output >> weak_cells;
     return header.step;
   }
 } // namespace bsmpm

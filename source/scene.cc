@@ -668,9 +668,13 @@ namespace bsmpm
     if (exact_solution && pcout.is_active())
       pcout << "exact solution     " << exact_solution->description() << '\n';
 
-    const unsigned int first_step =
-      checkpoint.resuming() ? checkpoint.read_state(run_summary, output) + 1 :
-                              1;
+    unsigned int first_step = 1;
+    if (checkpoint.resuming())
+      {
+        std::vector<CellId> weak_cells;
+        first_step = checkpoint.read_state(run_summary, output, weak_cells) + 1;
+        assembly->restore_matrix(weak_cells);
+      }
     if (pcout.is_active())
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);
@@ -958,7 +962,12 @@ namespace bsmpm
       so_far.timing[name] += seconds;
     so_far.timing["total"] += total_timer.wall_time();
     TimerOutput::Scope t(timer, "checkpoint");
-    checkpoint.write(step, grid, points, so_far, output);
+    checkpoint.write(step,
+                     grid,
+                     points,
+                     so_far,
+                     output,
+                     assembly->weak_cells_of_last_matrix());
   }
 
 

@@ -8,6 +8,7 @@
 #include <bsmpm/system_assembly.h>
 
 #include <algorithm>
+#include <set>
 
 namespace bsmpm
 {
@@ -43,19 +44,29 @@ namespace bsmpm
 
 
   void
-  SystemAssembly::make_matrix(const std::vector<bool> &face_cells)
+  SystemAssembly::make_matrix(const std::vector<bool> &weak)
   {
     // The couplings of every cell of the grid: valid whichever cells hold
     // points. Couplings across faces (ghost penalty) only near weak cells:
     // on all faces they would make the matrix 2.8 times larger. Faces of
     // ghost cells too: the rows of ghost DoFs that this process adds to
-    // must be in its own pattern.
+    // must be in its own pattern. The neighbours of the weak cells too, so
+    // that a boundary that moves by less than a cell per step needs no
+    // new matrix.
     const BackgroundGrid  &grid = parts.grid;
     const MPI_Comm         comm = grid.mpi_communicator();
     DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
     DoFTools::make_sparsity_pattern(grid.dof_handler(), dsp);
-    coupled_faces = face_cells;
-    if (!face_cells.empty())
+    weak_cells_of_matrix = weak;
+    coupled_faces        = weak;
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      if (weak[cell->active_cell_index()])
+        for (const unsigned int f : cell->face_indices())
+          if (!cell->at_boundary(f))
+            coupled_faces[cell->neighbor(f)->active_cell_index()] = true;
+    const std::vector<bool> &face_cells = coupled_faces;
+    if (std::find(face_cells.begin(), face_cells.end(), true) !=
+        face_cells.end())
       {
         std::vector<types::global_dof_index> here(Q1CellKernel::dofs_per_cell),
           there(Q1CellKernel::dofs_per_cell);
@@ -91,6 +102,37 @@ namespace bsmpm
                          grid.locally_owned_dofs(),
                          dsp,
                          comm);
+  }
+
+
+
+  std::vector<CellId>
+  SystemAssembly::weak_cells_of_last_matrix() const
+  {
+    std::vector<CellId> cells;
+    for (const auto &cell : parts.grid.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned() &&
+          cell->active_cell_index() < weak_cells_of_matrix.size() &&
+          weak_cells_of_matrix[cell->active_cell_index()])
+        cells.push_back(cell->id());
+    return cells;
+  }
+
+
+
+  void
+  SystemAssembly::restore_matrix(const std::vector<CellId> &cells)
+  {
+    if (!parts.ghost_penalty.enabled())
+      return;
+    // Owned and ghost cells, as GhostPenalty::weak_cells() marks them.
+    const std::set<CellId> listed(cells.begin(), cells.end());
+    const auto            &tria = parts.grid.triangulation();
+    std::vector<bool>      weak(tria.n_active_cells(), false);
+    for (const auto &cell : tria.active_cell_iterators())
+      if (!cell->is_artificial())
+        weak[cell->active_cell_index()] = listed.count(cell->id()) > 0;
+    make_matrix(weak);
   }
 
 
@@ -172,16 +214,7 @@ namespace bsmpm
         for (unsigned int c = 0; c < weak.size() && held; ++c)
           held = !weak[c] || coupled_faces[c];
         if (Utilities::MPI::min(held ? 1 : 0, grid.mpi_communicator()) == 0)
-          {
-            std::vector<bool> margin = weak;
-            for (const auto &cell :
-                 grid.triangulation().active_cell_iterators())
-              if (weak[cell->active_cell_index()])
-                for (const unsigned int f : cell->face_indices())
-                  if (!cell->at_boundary(f))
-                    margin[cell->neighbor(f)->active_cell_index()] = true;
-            make_matrix(margin);
-          }
+          make_matrix(weak);
       }
     timer.enter_subsection("assembly");
     system_matrix = 0;

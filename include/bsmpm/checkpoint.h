@@ -10,6 +10,7 @@
 #include <bsmpm/run_summary.h>
 
 #include <string>
+#include <vector>
 
 namespace bsmpm
 {
@@ -29,7 +30,9 @@ namespace bsmpm
    *   resume on another number of processes;
    * - `state`: a binary archive with the format version, the number of
    *   properties per point, the step, the ParticleHandler's counters, the
-   *   summary so far and the records of the ParaView series written;
+   *   summary so far, the records of the ParaView series written and the
+   *   weak cells the system matrix was made for (its pattern depends on
+   *   the steps before);
    * - `parameters.prm`: every parameter of the run.
    *
    * Everything else a step needs is either rebuilt from the parameters in
@@ -60,13 +63,17 @@ namespace bsmpm
     bool
     writes_step(const unsigned int step, const unsigned int n_steps) const;
 
-    /** Writes the checkpoint after load step @p step (collective). */
+    /** Writes the checkpoint after load step @p step (collective).
+     * @p weak_cells are this process's part of the weak cells the system
+     * matrix was last made for (SystemAssembly::weak_cells_of_last_matrix()).
+     */
     void
-    write(const unsigned int    step,
-          const BackgroundGrid &grid,
-          MaterialPoints       &points,
-          const RunSummary     &summary,
-          const OutputWriter   &output);
+    write(const unsigned int         step,
+          const BackgroundGrid      &grid,
+          MaterialPoints            &points,
+          const RunSummary          &summary,
+          const OutputWriter        &output,
+          const std::vector<CellId> &weak_cells);
 
     /**
      * The checkpoint to resume from: @p path itself if it is one, or the
@@ -113,10 +120,13 @@ namespace bsmpm
     void
     read_points(MaterialPoints &points) const;
 
-    /** Restores the summary and the series records; returns the step of
+    /** Restores the summary, the series records and the weak cells of
+     * every process that the matrix was last made for; returns the step of
      * the checkpoint. */
     unsigned int
-    read_state(RunSummary &summary, OutputWriter &output) const;
+    read_state(RunSummary          &summary,
+               OutputWriter        &output,
+               std::vector<CellId> &weak_cells) const;
 
   private:
     MPI_Comm     communicator;

@@ -202,6 +202,25 @@ namespace bsmpm
       return boundary_fit_matrix;
     }
 
+    /**
+     * The locally owned cells of the weak cells the matrix was last made
+     * for. Which cells the matrix couples across faces depends on the
+     * steps a run went through; a checkpoint keeps these so that the run
+     * resumed from it makes the same matrix (a direct solver orders its
+     * work by the pattern, so another one changes the last digits).
+     */
+    std::vector<CellId>
+    weak_cells_of_last_matrix() const;
+
+    /**
+     * Makes the matrix for the weak cells @p cells (every process's
+     * weak_cells_of_last_matrix() of the run that wrote the checkpoint):
+     * the same pattern as that run had. Collective; nothing to do without
+     * a ghost penalty.
+     */
+    void
+    restore_matrix(const std::vector<CellId> &cells);
+
     /** Number of cells with material or supports, over all processes, at
      * the last make_constraints(). */
     unsigned int
@@ -235,12 +254,13 @@ namespace bsmpm
     bool support_layout_current = false;
     /**
      * Builds the sparsity pattern and the matrix: the couplings of every
-     * cell, and across the faces of the cells flagged in @p face_cells (by
-     * active_cell_index(), owned and ghost; empty for none), where the
-     * ghost penalty acts.
+     * cell, and across the faces of the cells flagged in @p weak (by
+     * active_cell_index(), owned and ghost) and of their neighbours, where
+     * the ghost penalty acts now or may act after the boundary has moved
+     * by less than a cell.
      */
     void
-    make_matrix(const std::vector<bool> &face_cells);
+    make_matrix(const std::vector<bool> &weak);
 
     /** Adds the terms of the supports (implicit boundary method, Nitsche)
      * of all curves, or of @p only, to @p matrix and @p rhs. */
@@ -259,7 +279,9 @@ namespace bsmpm
       const double                                      increment_factor,
       const LinearAlgebra::distributed::Vector<double> *prescribed);
 
-    /** Cells whose face couplings the matrix holds. */
+    /** The weak cells the matrix was made for (make_matrix()), and the
+     * cells whose face couplings it holds: those and their neighbours. */
+    std::vector<bool> weak_cells_of_matrix;
     std::vector<bool> coupled_faces;
     /** Locally owned DoFs that no cell with material touches. */
     std::vector<types::global_dof_index> unsupported_dofs;
