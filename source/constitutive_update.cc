@@ -472,6 +472,7 @@ namespace bsmpm
     std::vector<PointView>               views;
     ConstitutiveState                    state;
     unsigned long long                   n_yielded = 0;
+    points.find_material_cells();
     const bool finite = point_kinematics == Kinematics::finite_strain;
     // The 2x2 blocks of the vertices in the points' tangent with their
     // algorithmic (a) and elastic (e) tangents: K_xx, K_yy on the vertex's

@@ -178,6 +178,7 @@ namespace bsmpm
     double              max_stress_square       = 0;
     double              max_increment_square    = 0;
     tracked_local.clear();
+    find_material_cells();
 
     std::vector<types::global_dof_index> dof_indices(
       Q1CellKernel::dofs_per_cell);
@@ -236,17 +237,24 @@ namespace bsmpm
             // the grid when the increment carries it out by no more than
             // the implicit boundary's inexactness (1e-9 .. 1e-7 h seen
             // where a support lies on a grid line); a real departure is
-            // reported below.
+            // reported below. The position itself is set to the face:
+            // adding the overshoot to the increment is lost to rounding
+            // when the increment is much larger than the overshoot.
+            Point<2> x = particle.get_location() + du;
             for (unsigned int k = 0; k < 2; ++k)
               {
                 const double tolerance = 1e-6 * grid.cell_size()[k];
-                const double position  = particle.get_location()[k] + du[k];
-                const double below     = grid.lower_left()[k] - position;
-                const double above     = position - grid.upper_right()[k];
-                if (below > 0 && below <= tolerance)
-                  du[k] += below;
-                else if (above > 0 && above <= tolerance)
-                  du[k] -= above;
+                const double lower     = grid.lower_left()[k];
+                const double upper     = grid.upper_right()[k];
+                const double face =
+                  x[k] < lower && x[k] >= lower - tolerance ? lower :
+                  x[k] > upper && x[k] <= upper + tolerance ? upper :
+                                                              x[k];
+                if (face != x[k])
+                  {
+                    x[k]  = face;
+                    du[k] = face - particle.get_location()[k];
+                  }
               }
             auto props                  = particle.get_properties();
             props[Property::d_function] = D;
@@ -285,7 +293,6 @@ namespace bsmpm
             if (finite && props[Property::volume] > 0)
               max_increment_square =
                 std::max(max_increment_square, du.norm_square());
-            const Point<2> x = particle.get_location() + du;
             if (!finite || !grid.contains(x))
               {
                 ++report.n_left_grid;
@@ -507,6 +514,25 @@ namespace bsmpm
 
 
 
+  void
+  MaterialPoints::find_material_cells()
+  {
+    const auto                                &tria = grid.triangulation();
+    LinearAlgebra::distributed::Vector<double> flags(
+      tria.global_active_cell_index_partitioner().lock());
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned() && holds_material(cell))
+        flags[cell->global_active_cell_index()] = 1;
+    flags.update_ghost_values();
+    material_cells.assign(tria.n_active_cells(), false);
+    for (const auto &cell : tria.active_cell_iterators())
+      if (!cell->is_artificial())
+        material_cells[cell->active_cell_index()] =
+          flags[cell->global_active_cell_index()] > 0;
+  }
+
+
+
   std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>
   MaterialPoints::boundary_source(
     const DoFHandler<2>::active_cell_iterator &cell,
@@ -525,6 +551,8 @@ namespace bsmpm
     std::sort(faces.begin(), faces.end(), [&](unsigned int a, unsigned int b) {
       return distance[a] < distance[b];
     });
+    Assert(material_cells.size() == grid.triangulation().n_active_cells(),
+           ExcMessage("find_material_cells() first"));
     auto     source = cell;
     Point<2> where  = st;
     for (const unsigned int face : faces)
@@ -532,8 +560,7 @@ namespace bsmpm
         if (cell->at_boundary(face) || cell->neighbor(face)->is_artificial())
           continue;
         const auto neighbour = cell->neighbor(face);
-        // A ghost neighbour's points are unknown here: trust the nearest.
-        if (neighbour->is_locally_owned() && !holds_material(neighbour))
+        if (!material_cells[neighbour->active_cell_index()])
           continue;
         source = neighbour;
         where[face / 2] += (face % 2 == 0) ? 1. : -1.;

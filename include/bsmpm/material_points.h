@@ -242,6 +242,17 @@ namespace bsmpm
     holds_material(const DoFHandler<2>::active_cell_iterator &cell) const;
 
     /**
+     * Finds which owned and ghost cells hold material (collective), for
+     * boundary_strain() and boundary_gradient(): a zero-volume point next
+     * to a ghost cell must take the same neighbour's field as it would on
+     * the process that owns that cell, or the result would depend on the
+     * partition. move() calls it itself; call it after the points changed
+     * cells and before the other two.
+     */
+    void
+    find_material_cells();
+
+    /**
      * The strain increment of the grid field @p increment (with ghost
      * values; plus @p prescribed if given) for a zero-volume point at local
      * coordinates @p st of @p cell, a cell without material: the strain of
@@ -293,6 +304,10 @@ namespace bsmpm
     std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>
     boundary_source(const DoFHandler<2>::active_cell_iterator &cell,
                     const Point<2>                            &st) const;
+
+    /** Whether each owned and ghost cell holds material, by
+     * active_cell_index() (find_material_cells()). */
+    std::vector<bool> material_cells;
 
     /** Records position and stress of a point if it is tracked. */
     void

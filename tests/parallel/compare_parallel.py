@@ -8,8 +8,16 @@ cond(K) times the machine epsilon, and an error that is itself small against
 the solution magnifies that. So absolute errors (A_*, max_A_*) are compared
 relative to the scale of their field (max_displacement, max_stress of the
 serial run), and normalised errors (R_*, L2_*) absolutely; quantities
-relative to themselves. The places of maxima (max_A_u_at_x, ...) are not
+relative to themselves, except the components of a vector or tensor
+(..._x, ..._y, ..._xx, ..._xy, ..._yy), which are compared relative to the
+largest component of the same name: a shear stress or a sideways force
+that is zero but for round-off is no worse for being at 1e-16 in one run
+and 1e-14 in the other. The places of maxima (max_A_u_at_x, ...) are not
 compared: among round-off-level errors the largest is an arbitrary one.
+The number of points that yielded may differ by one in two hundred
+(--yield-tolerance): a point whose stress lies on the yield surface to
+round-off yields in one run and not in the other (seen: 673 against 674
+on the smooth strip footing at np = 3); every field is still compared.
 """
 import argparse
 import json
@@ -39,12 +47,29 @@ def scale_of(name, quantities):
     return None
 
 
+COMPONENTS = ("_xx", "_xy", "_yy", "_x", "_y")
+
+
+def component_scale(name, quantities):
+    """The largest component of the vector or tensor that @p name is a
+    component of, or None if it is none."""
+    for suffix in COMPONENTS:
+        if name.endswith(suffix):
+            stem = name[:-len(suffix)]
+            members = [v for k, v in quantities.items()
+                       if k[len(stem):] in COMPONENTS and k.startswith(stem)
+                       and isinstance(v, (int, float))]
+            return max(abs(v) for v in members)
+    return None
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--bsmpm", required=True)
     parser.add_argument("--prm", required=True)
     parser.add_argument("--np", type=int, default=2)
     parser.add_argument("--tolerance", type=float, default=1e-10)
+    parser.add_argument("--yield-tolerance", type=float, default=0.005)
     parser.add_argument("--set", action="append", default=[])
     args = parser.parse_args()
 
@@ -75,10 +100,15 @@ def main():
             if "_at_" in name:
                 continue  # where a maximum occurs: arbitrary among ties
             reference = scale_of(name, serial["quantities"]) if section == "errors" else None
+            if reference is None and section == "quantities":
+                reference = component_scale(name, a)
             if reference is None:
                 reference = max(abs(a[name]), abs(b[name]))
             difference = abs(a[name] - b[name])
-            ok = difference <= args.tolerance * reference
+            if name == "yielded_points":
+                ok = difference <= max(1, args.yield_tolerance * a[name])
+            else:
+                ok = difference <= args.tolerance * reference
             print(f"{section}/{name}: serial {a[name]:.15e} np={args.np} "
                   f"{b[name]:.15e} {'ok' if ok else 'DIFFERENT'}")
             failed |= not ok
