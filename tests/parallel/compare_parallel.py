@@ -15,9 +15,10 @@ that is zero but for round-off is no worse for being at 1e-16 in one run
 and 1e-14 in the other. The places of maxima (max_A_u_at_x, ...) are not
 compared: among round-off-level errors the largest is an arbitrary one.
 The number of points that yielded may differ by one in two hundred
-(--yield-tolerance): a point whose stress lies on the yield surface to
-round-off yields in one run and not in the other (seen: 673 against 674
-on the smooth strip footing at np = 3); every field is still compared.
+(--yield-tolerance): without hardening a point that stays on the yield
+surface has a trial yield function of zero to round-off, and counts as
+yielding (f > 0) in one run and not in the other; every field is still
+compared.
 """
 import argparse
 import json
