@@ -870,7 +870,11 @@ namespace bsmpm
     // that yielded then are evaluated on the plastic branch from the first
     // iteration, where a start from zero would see them on the yield surface
     // with the elastic tangent and overshoot.
-    increment        = 0;
+    // Zeroing a ghosted vector leaves it without ghost values: import the
+    // zeros, or the cells next to another process read ghosts it does not
+    // have.
+    increment = 0;
+    increment.update_ghost_values();
     const auto  *d_a = has_prescribed ? &prescribed : nullptr;
     const double reference =
       assembly->newton_system(*constitutive_update, points, increment, d_a);
