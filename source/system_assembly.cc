@@ -64,9 +64,8 @@ namespace bsmpm
         for (const unsigned int f : cell->face_indices())
           if (!cell->at_boundary(f))
             coupled_faces[cell->neighbor(f)->active_cell_index()] = true;
-    const std::vector<bool> &face_cells = coupled_faces;
-    if (std::find(face_cells.begin(), face_cells.end(), true) !=
-        face_cells.end())
+    if (std::find(coupled_faces.begin(), coupled_faces.end(), true) !=
+        coupled_faces.end())
       {
         std::vector<types::global_dof_index> here(Q1CellKernel::dofs_per_cell),
           there(Q1CellKernel::dofs_per_cell);
@@ -75,8 +74,8 @@ namespace bsmpm
             for (const unsigned int f : cell->face_indices())
               if (!cell->at_boundary(f) &&
                   !cell->neighbor(f)->is_artificial() &&
-                  (face_cells[cell->active_cell_index()] ||
-                   face_cells[cell->neighbor(f)->active_cell_index()]))
+                  (coupled_faces[cell->active_cell_index()] ||
+                   coupled_faces[cell->neighbor(f)->active_cell_index()]))
                 {
                   cell->get_dof_indices(here);
                   cell->neighbor(f)->get_dof_indices(there);
