@@ -35,9 +35,9 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
-#include <bsmpm/b_spline_curve.h>
-#include <bsmpm/exact_solution.h>
-#include <bsmpm/material.h>
+#include <bsmpm/geometry/b_spline_curve.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/verification/exact_solution.h>
 
 #include <cmath>
 #include <iostream>

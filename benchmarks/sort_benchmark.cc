@@ -27,11 +27,11 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
-#include <bsmpm/background_grid.h>
-#include <bsmpm/body_region.h>
-#include <bsmpm/material_point_layout.h>
-#include <bsmpm/material_points.h>
-#include <bsmpm/point_sorting.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/geometry/body_region.h>
+#include <bsmpm/points/material_point_layout.h>
+#include <bsmpm/points/material_points.h>
+#include <bsmpm/points/point_sorting.h>
 
 #include <algorithm>
 #include <cmath>

@@ -7,12 +7,12 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include <bsmpm/curve_output.h>
-#include <bsmpm/error_measures.h>
-#include <bsmpm/input_checks.h>
-#include <bsmpm/parameter_tools.h>
-#include <bsmpm/point_output.h>
+#include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/io/curve_output.h>
+#include <bsmpm/io/input_checks.h>
+#include <bsmpm/io/point_output.h>
 #include <bsmpm/scene.h>
+#include <bsmpm/verification/error_measures.h>
 
 #include <cmath>
 #include <iomanip>
@@ -651,9 +651,13 @@ namespace bsmpm
       compute_errors(points, *exact_solution, communicator, finite_strain());
     if (const auto lame =
           dynamic_cast<const LameCylinder *>(exact_solution.get()))
-      for (const auto &[name, value] :
-           compute_radius_errors(boundary_curves, *lame))
-        run_summary.quantities[name] = value;
+      {
+        std::vector<BoundaryArc> arcs;
+        for (const auto &curve : boundary_curves.get_curves())
+          arcs.push_back({curve.initial_positions, *curve.spline});
+        for (const auto &[name, value] : compute_radius_errors(arcs, *lame))
+          run_summary.quantities[name] = value;
+      }
   }
 
 

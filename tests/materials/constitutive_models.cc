@@ -29,11 +29,11 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 
-#include <bsmpm/constitutive_model.h>
-#include <bsmpm/constitutive_update.h>
-#include <bsmpm/drucker_prager_plasticity.h>
-#include <bsmpm/material.h>
-#include <bsmpm/von_mises_plasticity.h>
+#include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/materials/drucker_prager_plasticity.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/materials/von_mises_plasticity.h>
+#include <bsmpm/solver/constitutive_update.h>
 
 #include <cmath>
 #include <memory>

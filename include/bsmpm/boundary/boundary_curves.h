@@ -1,0 +1,366 @@
+#ifndef bsmpm_boundary_curves_h
+#define bsmpm_boundary_curves_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <bsmpm/geometry/b_spline_curve.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/geometry/body_region.h>
+#include <bsmpm/geometry/curve_cell_intersection.h>
+#include <bsmpm/points/material_points.h>
+#include <bsmpm/verification/exact_solution.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * What acts on a stretch of a boundary curve: nothing, a traction (paper
+   * Sec. 3.4) or a support (paper Sec. 3.5).
+   *
+   * In a parameter file a condition reads "[i-j:] kind [arguments]", where
+   * i-j restricts it to the segments between points i and j of the chain
+   * (0-based; the whole chain if absent):
+   * - free
+   * - pressure <p>: p in Pa on the current curve, along the inward normal
+   *   (a follower load);
+   * - traction <tx>; <ty>: a traction vector in Pa, as expressions of x, y;
+   * - exact traction: sigma(x) n from the scene's exact solution;
+   * - fixed: u = 0; roller: u . n = 0 (n the normal of the current curve);
+   * - displacement exact: u = u_exact(x); displacement <ux>; <uy>: u given
+   *   as expressions of x, y;
+   * - normal displacement <un>: u . n = un (an expression of x, y) with n
+   *   the outward normal of the body on the current curve, the tangential
+   *   component free (a smooth rigid footing pushed into the body has
+   *   un < 0); normal displacement exact: u . n = u_exact(x) . n.
+   * Loads and prescribed displacements are scaled by the load factor of the
+   * step. Supports are imposed by the curve's Dirichlet method (implicit
+   * boundary method or Nitsche's method).
+   */
+  struct CurveCondition
+  {
+    enum class Kind
+    {
+      free,
+      pressure,
+      traction,
+      exact_traction,
+      fixed,
+      roller,
+      displacement,
+      normal_displacement
+    };
+
+    Kind         kind          = Kind::free;
+    unsigned int first_segment = 0;
+    unsigned int end_segment   = numbers::invalid_unsigned_int;
+    double       pressure      = 0;
+    /** Traction of "traction", displacement of "displacement <ux>; <uy>"
+     * (two components) or normal displacement of "normal displacement <un>"
+     * (one component); nullptr for "displacement exact" and "normal
+     * displacement exact". */
+    std::shared_ptr<FunctionParser<2>> function;
+    /** The parameter that gave the condition, for messages. */
+    std::string where;
+
+    /** The value of the function at @p x. If it is not finite and
+     * @p problem is empty, @p problem gets a message that names the
+     * parameter and the point (see ParameterTools::throw_if_any()). */
+    Tensor<1, 2>
+    function_value(const Point<2> &x, std::string &problem) const;
+
+    /** As function_value(), for the one component of "normal displacement
+     * <un>". */
+    double
+    scalar_function_value(const Point<2> &x, std::string &problem) const;
+
+    /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
+    static CurveCondition
+    parse(const std::string &text, const std::string &where);
+
+    /** Whether the condition covers segment @p k of a chain of
+     * @p n_segments segments (ranges may wrap round a closed chain). */
+    bool
+    covers(const unsigned int k, const unsigned int n_segments) const;
+
+    bool
+    is_load() const
+    {
+      return kind == Kind::pressure || kind == Kind::traction ||
+             kind == Kind::exact_traction;
+    }
+
+    bool
+    is_support() const
+    {
+      return kind == Kind::fixed || kind == Kind::roller ||
+             kind == Kind::displacement || kind == Kind::normal_displacement;
+    }
+
+    /** Whether the support holds the normal component only (a roller or a
+     * prescribed normal displacement). */
+    bool
+    holds_normal_component_only() const
+    {
+      return kind == Kind::roller || kind == Kind::normal_displacement;
+    }
+
+    /** Whether the support prescribes a displacement (both components or
+     * the normal one). */
+    bool
+    prescribes_displacement() const
+    {
+      return kind == Kind::displacement || kind == Kind::normal_displacement;
+    }
+
+    /** Whether the support holds both components (not a roller, not a
+     * prescribed normal displacement). */
+    bool
+    holds_both_components() const
+    {
+      return kind == Kind::fixed || kind == Kind::displacement;
+    }
+
+    /** Name of the kind, as in the parameter file. */
+    std::string
+    kind_name() const;
+  };
+
+
+
+  /**
+   * One boundary curve: an ordered chain of boundary points (zero-volume
+   * tracking points or material points) that moves with the body, the cubic
+   * B-spline through their current positions, and its pieces per grid cell,
+   * both rebuilt every load step.
+   */
+  struct BoundaryCurve
+  {
+    /** How the supports of a curve are imposed. */
+    enum class DirichletMethod
+    {
+      implicit_boundary,
+      nitsche
+    };
+
+    std::string     name;
+    DirichletMethod dirichlet_method = DirichletMethod::implicit_boundary;
+    bool            closed           = false;
+    std::vector<unsigned int>   corners;
+    std::vector<CurveCondition> conditions;
+    bool                        trims_material_points = false;
+    bool                        halve_point_volumes   = false;
+    /** Slots of the chain's points in MaterialPoints' tracked list. */
+    std::vector<unsigned int> tracked_slots;
+    std::vector<Point<2>>     positions;
+    /** Positions of the points at the start of the run. */
+    std::vector<Point<2>> initial_positions;
+    /** Stresses of the points (Voigt), as of the last load step. */
+    std::vector<Voigt>            stresses;
+    std::unique_ptr<BSplineCurve> spline;
+    std::vector<CurvePiece>       pieces;
+
+    unsigned int
+    n_segments() const
+    {
+      return closed ? positions.size() : positions.size() - 1;
+    }
+
+    /**
+     * The condition of the rigid body that point @p k belongs to, or
+     * nullptr. A rigid body is pushed by a prescribed normal displacement
+     * (a smooth footing): a run of segments with the same 'normal
+     * displacement' condition of which at least one end meets a segment
+     * that is no support (the footing's edge meets the free surface). Its
+     * points move with the body, by the prescribed normal displacement, so
+     * that the contact keeps its extent while the soil slides along it. An
+     * end of the run that meets another support (the corner of a box held
+     * on two sides) slides with the body as before.
+     */
+    const CurveCondition *
+    rigid_support(const unsigned int k) const;
+
+    /** The stress of the curve's points as of the last load step at
+     * parameter @p u of segment @p segment, interpolated linearly between
+     * the segment's two points: the boundary's stress, whose traction is the
+     * reaction that supports carry from step to step. */
+    Voigt
+    stress_at(const unsigned int segment, const double u) const;
+
+    /** The condition on segment @p k (the last one given that covers it),
+     * or nullptr if the segment is free. */
+    const CurveCondition *
+    condition_of_segment(const unsigned int k) const;
+  };
+
+
+
+  /**
+   * The boundary of the body as B-spline curves (paper Sec. 3.2): where their
+   * points come from, how they move, and their rebuilding and cutting by the
+   * grid at every load step (paper Sec. 3.3). Curves are global: their few
+   * points are gathered on every process, which builds the same splines.
+   *
+   * A curve is declared in a subsection "Curve 1" ... "Curve 8" of "Boundary
+   * curves"; see declare_parameters() for its entries.
+   */
+  class BoundaryCurves
+  {
+  public:
+    static constexpr unsigned int max_curves = 8;
+    /** Most tracking points per region edge ("Number of points"): far
+     * more than any grid resolves, few enough to build in a moment. */
+    static constexpr int max_points_per_edge = 100000;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    /** Reads the curves; also reads "Exact solution/Name" (declared by the
+     * Scene) to refuse conditions that need an exact solution without one. */
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    bool
+    empty() const
+    {
+      return curves.empty();
+    }
+
+    /**
+     * Whether a material point at @p p (in the grid) is cut away by a
+     * trimming curve: it lies on the outer side of it. Only points in cells
+     * that a trimming curve cuts need a closest-point search; every other
+     * cell lies wholly on one side, decided once by its centre.
+     */
+    bool
+    trims(const Point<2> &p) const;
+
+    /**
+     * Builds the initial splines of the curves whose points are given
+     * directly (coordinates, a file, the edges of the body region): they
+     * must exist before the material points, to trim them.
+     */
+    void
+    create_initial_curves(const BodyRegion &region, const BackgroundGrid &grid);
+
+    /**
+     * Inserts the tracking points of the curves, or finds the material
+     * points that form them. Returns the ids to track, without repetitions:
+     * MaterialPoints::track() must be given them (possibly followed by
+     * others), then read_initial_positions() called.
+     */
+    std::vector<types::particle_index>
+    create_points(MaterialPoints &points, const BodyRegion &region);
+
+    /** Reads the starting positions of the curves' points. */
+    void
+    read_initial_positions(const MaterialPoints &points);
+
+    /** Rebuilds the splines from the current point positions and cuts them
+     * by @p grid. */
+    void
+    update(const MaterialPoints &points, const BackgroundGrid &grid);
+
+    /**
+     * The increment of every curve point that belongs to a rigid body
+     * (BoundaryCurve::rigid_support()) for the load increment @p factor:
+     * factor u_n n with n the outward normal at the point and u_n the
+     * condition's normal displacement there (from @p exact for 'normal
+     * displacement exact'), by the point's slot in the tracked list of
+     * @p n_slots points; the flag is false for every other slot.
+     */
+    std::vector<std::pair<bool, Tensor<1, 2>>>
+    rigid_support_increments(const unsigned int   n_slots,
+                             const ExactSolution *exact,
+                             const double         factor) const;
+
+    const std::vector<BoundaryCurve> &
+    get_curves() const
+    {
+      return curves;
+    }
+
+    /** Whether any curve carries a load. */
+    bool
+    has_loads() const;
+
+    /**
+     * Sets @p cells[c] for every locally owned cell c (by
+     * active_cell_index()) that a support imposed by @p method crosses;
+     * with @p both_components_only, only supports that hold both components
+     * (not rollers) count.
+     */
+    void
+    mark_support_cells(const BackgroundGrid                &grid,
+                       const BoundaryCurve::DirichletMethod method,
+                       const bool         both_components_only,
+                       std::vector<bool> &cells) const;
+
+    /** Whether any curve carries a support imposed by @p method. */
+    bool
+    has_supports(const BoundaryCurve::DirichletMethod method) const;
+
+    /**
+     * Whether the curves together are the whole boundary of the body, so
+     * that the region they enclose is the body (CutCellGeometry): they form
+     * closed loops (a closed curve, or open curves each ending where another
+     * starts), and every curve lies on the body's boundary: its points are
+     * tracking points, or material points whose volumes are halved (without
+     * that, the points' volumes reach beyond the curve). If not, @p reason
+     * says why; otherwise it is left empty.
+     */
+    bool
+    encloses_body(std::string &reason) const;
+
+    /** The points given directly (coordinates or a file) of every curve
+     * that has them, with the curve's name. */
+    std::vector<std::pair<std::string, std::vector<Point<2>>>>
+    given_points() const;
+
+    /** Total number of boundary points. */
+    unsigned int
+    n_points() const;
+
+  private:
+    /**
+     * If every curve lies on a named part of the body region's boundary
+     * (Points = region edge) and together they leave parts uncovered, adds
+     * a free curve of tracking points along each of those, so that the
+     * curves enclose the body (encloses_body()).
+     */
+    void
+    complete_region_boundary(const BodyRegion     &region,
+                             const BackgroundGrid &grid);
+
+    /** How the points of a curve are given. */
+    struct Source
+    {
+      std::string kind; // region edge | coordinates | file |
+                        // material points
+      std::string           edge;
+      unsigned int          n_points = 0;
+      std::vector<Point<2>> positions; // for the first three
+    };
+
+    void
+    rebuild(BoundaryCurve &curve) const;
+
+    /** Whether @p p lies on the outer side of a trimming curve (search). */
+    bool
+    outside_trimming_curve(const Point<2> &p) const;
+
+    std::vector<BoundaryCurve> curves;
+    std::vector<Source>        sources;
+
+    /** Per grid cell (row-major): 0 unknown, 1 kept, 2 trimmed, 3 cut by a
+     * trimming curve; filled lazily by trims(). */
+    const BackgroundGrid              *trimming_grid = nullptr;
+    mutable std::vector<unsigned char> trimming_state;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,191 @@
+#ifndef bsmpm_implicit_boundary_h
+#define bsmpm_implicit_boundary_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+#include <bsmpm/verification/exact_solution.h>
+
+#include <array>
+#include <functional>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Supports on the B-spline boundary by the implicit boundary method (IBM,
+   * paper Sec. 3.5). Near a supported curve the displacement is
+   *
+   *   u = P(D(phi)) w + u^a,   w = M d,
+   *
+   * with phi the signed distance to the curve (positive inside the body) and
+   * D the D-function of eq. 20, rising from 0 on the curve to 1 at the inner
+   * edge of a band of width delta:
+   * - fixed (and prescribed displacement): P = D I;
+   * - roller (and, consistent formulation only, a prescribed normal
+   *   displacement): P = I + (D - 1) n n^T, so only the normal component is
+   *   held
+   *   (method-notes Sec. 5: the boundary-frame form, exact on inclined
+   *   boundaries). The paper's form with the rotation J_T of eq. 26 is
+   *   available as "Roller form = paper".
+   *
+   * The material points integrate the regular stiffness (D = 1 there); the
+   * band adds k2 + k2^T + k3 of eqs. 21-28, integrated per curve piece with
+   * Gauss points along the piece times Gauss points across the band
+   * (paper Fig. 3b). Over the band, int D'^2 = 4 / (3 delta): k3 acts as a
+   * penalty of order E / delta.
+   *
+   * A prescribed displacement enters through nodal values d^a, the global
+   * least-squares fit of u^a along the boundary (eq. 36), and the force
+   * f^d = int Bbar^T C B d^a (eq. 33).
+   */
+  class ImplicitBoundary
+  {
+  public:
+    /** A quadrature point of the band, kept for output. */
+    struct BandPoint
+    {
+      Point<2> position;
+      double   d_function;
+      double   weight;
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** The D-function of eq. 20 and its derivative. */
+    static double
+    d_function(const double phi, const double delta);
+    static double
+    d_function_derivative(const double phi, const double delta);
+
+    /** Band width delta on @p grid. */
+    double
+    band_width(const BackgroundGrid &grid) const
+    {
+      return relative_band_width * grid.min_cell_size();
+    }
+
+    /**
+     * Adds the band terms of all IBM supports on locally owned cells to
+     * @p matrix, and to @p rhs the band's share of the internal force of the
+     * previous steps and of the force of a prescribed displacement: through
+     * @p prescribed (d^a with ghosts, frame and paper formulations) or, in
+     * the consistent formulation, from the prescribed values themselves
+     * times @p increment_factor (@p exact for "displacement exact").
+     * With @p only, the supports of that curve alone (SupportReaction).
+     */
+    void
+    assemble(const BoundaryCurves                             &curves,
+             const BackgroundGrid                             &grid,
+             const Q1CellKernel                               &kernel,
+             const Tensor<2, 3>                               &C,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const ExactSolution                              *exact,
+             const double                                      increment_factor,
+             const AffineConstraints<double>                  &constraints,
+             TrilinosWrappers::SparseMatrix                   &matrix,
+             TrilinosWrappers::MPI::Vector                    &rhs,
+             const BoundaryCurve                              *only = nullptr);
+
+    /** Whether any IBM support prescribes a displacement (both
+     * components: a normal displacement is imposed by the consistent
+     * formulation only, which needs no fit). */
+    static bool
+    prescribes_displacement(const BoundaryCurves &curves);
+
+    /**
+     * Whether prescribed displacements go through nodal values d^a fitted
+     * by least squares (fit_prescribed_displacement(), the paper's eq. 36:
+     * frame and paper formulations). The consistent formulation imposes
+     * the prescribed value g on the boundary itself, u = w + (1 - D)(g -
+     * w(x_b)), and needs no fit.
+     */
+    bool
+    fits_prescribed_displacement(const BoundaryCurves &curves) const
+    {
+      return formulation != Formulation::consistent &&
+             prescribes_displacement(curves);
+    }
+
+    /**
+     * The least-squares nodal values d^a of eq. 36 for the prescribed
+     * displacement u^a times @p factor, over the pieces of IBM displacement
+     * supports; zero at DoFs whose support does not meet them. @p mass is a
+     * matrix with the system's sparsity pattern, used as work space.
+     * Returns the root mean square of M d^a - u^a along those pieces.
+     */
+    double
+    fit_prescribed_displacement(
+      const BoundaryCurves                       &curves,
+      const BackgroundGrid                       &grid,
+      const Q1CellKernel                         &kernel,
+      const ExactSolution                        *exact,
+      const double                                factor,
+      TrilinosWrappers::SparseMatrix             &mass,
+      LinearAlgebra::distributed::Vector<double> &prescribed) const;
+
+    /**
+     * The displacement increment of a point at @p x (before it moves) whose
+     * grid increment is @p w, if @p x lies in the band of an IBM support:
+     * w - (1 - D) P w(x_b) (consistent formulation, with @p field the grid
+     * increment anywhere in the point's cell and x_b the nearest boundary
+     * point) or P(D) w; else w. Returns D (1 outside every band).
+     */
+    double
+    support_displacement(
+      const BoundaryCurves                                &curves,
+      const BackgroundGrid                                &grid,
+      const Point<2>                                      &x,
+      const std::function<Tensor<1, 2>(const Point<2> &)> &field,
+      Tensor<1, 2>                                        &w) const;
+
+    const std::vector<BandPoint> &
+    band_points() const
+    {
+      return points;
+    }
+
+  private:
+    /** The value of u^a of @p condition at @p x: the displacement, or for
+     * a normal displacement u_n n with n = @p outward_normal (the curve's
+     * outward normal, at x or at the boundary point the caller holds it
+     * constant from). */
+    static Tensor<1, 2>
+    prescribed_value(const CurveCondition &condition,
+                     const ExactSolution  *exact,
+                     const Point<2>       &x,
+                     const Tensor<1, 2>   &outward_normal);
+
+    double       relative_band_width = 1e-2;
+    unsigned int points_along        = 2;
+    unsigned int points_across       = 3;
+    /** How the band modifies the displacement (see "Formulation"). */
+    enum class Formulation
+    {
+      consistent,
+      frame,
+      paper
+    };
+    Formulation formulation = Formulation::consistent;
+
+    std::vector<BandPoint> points;
+    /** The increment factor and exact solution of the last assemble(), for
+     * support_displacement(). */
+    double               last_increment_factor = 0;
+    const ExactSolution *last_exact            = nullptr;
+  };
+} // namespace bsmpm
+
+#endif

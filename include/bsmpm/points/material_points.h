@@ -1,0 +1,354 @@
+#ifndef bsmpm_material_points_h
+#define bsmpm_material_points_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/geometry/body_region.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/points/material_point_layout.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+
+#include <algorithm>
+#include <functional>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The material points (MPs): the quadrature points of the method, which
+   * carry the state of the body through the load steps. They live in a
+   * Particles::ParticleHandler, so that sorting into cells and MPI ownership
+   * come from deal.II; their state is stored as particle properties.
+   *
+   * Zero-volume points are boundary tracking points: they move with the body
+   * but never enter the stiffness or the internal force.
+   */
+  class MaterialPoints
+  {
+  public:
+    /** Offsets of the state in the properties of a particle. */
+    struct Property
+    {
+      static constexpr unsigned int volume           = 0;
+      static constexpr unsigned int stress           = 1; ///< xx, yy, xy
+      static constexpr unsigned int strain           = 4; ///< xx, yy, xy
+      static constexpr unsigned int displacement     = 7; ///< total, x, y
+      static constexpr unsigned int initial_position = 9; ///< x, y
+      /** Value of the IBM D-function at the point in the last step (1 away
+       * from supports). */
+      static constexpr unsigned int d_function   = 11;
+      static constexpr unsigned int n_properties = 12;
+      /** The state of a nonlinear constitutive model, stored only when the
+       * scene's model needs it (n_properties_inelastic properties). */
+      static constexpr unsigned int elastic_strain = 12; ///< xx, yy, zz, xy
+      static constexpr unsigned int plastic_strain = 16; ///< equivalent
+      static constexpr unsigned int stress_zz      = 17;
+      static constexpr unsigned int yielded        = 18; ///< 1 if plastic
+      /** Quadrature weight of the point in this step (its volume, or the
+       * moment-fitted weight in a cut cell, CutCellQuadrature). */
+      static constexpr unsigned int weight = 19;
+      /** Deformation gradient F of the point's motion since the start
+       * (xx, xy, yx, yy; F_zz = 1 in plane strain) and det F: the
+       * kinematics of finite strain; in small strain a record of the
+       * points' motion. */
+      static constexpr unsigned int deformation_gradient   = 20;
+      static constexpr unsigned int det_F                  = 24;
+      static constexpr unsigned int n_properties_inelastic = 25;
+    };
+
+    /** Result of moving the points by one increment. */
+    struct MoveReport
+    {
+      /** Points (over all processes) that would leave the grid. */
+      types::particle_index n_left_grid = 0;
+      /** Where one of them would go. */
+      Point<2> example;
+      /** Largest total displacement and stress (Frobenius) norms of points
+       * with volume, over all processes: the scales of the solution. */
+      double max_displacement = 0;
+      double max_stress       = 0;
+      /** Largest displacement increment of a point with volume. */
+      double max_increment = 0;
+      /** Points whose increment is not finite (NaN or inf). */
+      types::particle_index n_non_finite = 0;
+      /** Support quality (GhostPenalty) of the cell that the example point
+       * left, if the qualities were given; -1 otherwise. */
+      double example_quality = -1;
+    };
+
+    /** With @p inelastic_state, every point also stores the state of a
+     * nonlinear constitutive model (Property::elastic_strain and after). */
+    explicit MaterialPoints(const BackgroundGrid &grid,
+                            const bool            inelastic_state = false);
+
+    /** Whether the points store the state of a nonlinear constitutive
+     * model; to be set before generate(). */
+    void
+    store_inelastic_state(const bool inelastic_state)
+    {
+      n_point_properties = inelastic_state ? Property::n_properties_inelastic :
+                                             Property::n_properties;
+    }
+
+    /** Number of properties per point. */
+    unsigned int
+    n_properties() const
+    {
+      return n_point_properties;
+    }
+
+    /**
+     * Creates the material points of @p layout in @p region, except those
+     * for which @p excluded (if given) is true. Throws if a point lies
+     * outside the grid or if the region holds no point.
+     */
+    void
+    generate(const MaterialPointLayout                   &layout,
+             const BodyRegion                            &region,
+             const std::function<bool(const Point<2> &)> &excluded = {});
+
+    /**
+     * Adds zero-volume tracking points at @p positions (the same list on
+     * every process) and returns their particle ids, in order.
+     */
+    std::vector<types::particle_index>
+    add_tracking_points(const std::vector<Point<2>> &positions);
+
+    const Particles::ParticleHandler<2> &
+    particle_handler() const
+    {
+      return particles;
+    }
+    Particles::ParticleHandler<2> &
+    particle_handler()
+    {
+      return particles;
+    }
+
+    /** Number of points with volume, over all processes. */
+    types::particle_index
+    n_global_material_points() const
+    {
+      return n_material_points;
+    }
+
+    /** Sum of the volumes of all points. */
+    double
+    global_volume() const;
+
+    /**
+     * The volume and stress moments of every locally owned cell, indexed by
+     * active_cell_index(); zero for other cells.
+     */
+    void
+    compute_cell_moments(std::vector<CellMoments> &moments) const;
+
+    /**
+     * Modifies the displacement increment @p w of a point at @p x near a
+     * support and returns the D-function there (see ImplicitBoundary);
+     * @p field gives the grid increment anywhere in the point's cell.
+     */
+    using SupportFunction = std::function<
+      double(const Point<2>                                      &x,
+             const std::function<Tensor<1, 2>(const Point<2> &)> &field,
+             Tensor<1, 2>                                        &w)>;
+
+    /**
+     * Applies the grid increment @p increment (with ghost values) to every
+     * point: strain, stress, total displacement and position (paper eqs 5-8).
+     * With @p prescribed (nodal values d^a of prescribed displacements, or
+     * nullptr), the increment is u = w + M d^a and the strain B (d + d^a).
+     * In the cells flagged in @p support_cells (by active_cell_index),
+     * @p support modifies w. @p cell_quality (by active_cell_index, if
+     * given) is reported for a point that leaves the grid. The points are not
+     * re-sorted into cells; see sort_into_cells(). Without
+     * @p update_stress the stress is left alone (a nonlinear model has
+     * stored it already, ConstitutiveUpdate::commit()), without
+     * @p update_strain the strain (finite strain: commit() stores the
+     * logarithmic strain).
+     */
+    MoveReport
+    move(const Q1CellKernel                               &kernel,
+         const LinearElasticMaterial                      &material,
+         const LinearAlgebra::distributed::Vector<double> &increment,
+         const LinearAlgebra::distributed::Vector<double> *prescribed = nullptr,
+         const std::vector<bool>   *support_cells                     = nullptr,
+         const SupportFunction     &support                           = {},
+         const std::vector<double> *cell_quality                      = nullptr,
+         const bool                 update_stress                     = true,
+         const bool                 update_strain                     = true);
+
+    /** Finds the cell and owner of every point after move(). */
+    void
+    sort_into_cells();
+
+    /**
+     * The outer layer of material points along a straight polyline (its
+     * vertices @p corners, closed or not): along each side, the points with
+     * volume nearest to it on its left, ordered along it. Returns their ids,
+     * the same on every process; for a closed polyline each corner point
+     * appears once.
+     */
+    std::vector<types::particle_index>
+    outer_layer(const std::vector<Point<2>> &corners, const bool closed) const;
+
+    /** Multiplies the volume of the points with ids @p ids by @p factor
+     * (the same list on every process); a repeated id is scaled once per
+     * occurrence. */
+    void
+    scale_volumes(const std::vector<types::particle_index> &ids,
+                  const double                              factor);
+
+    /**
+     * Marks the points with ids @p ids (the same list on every process) as
+     * tracked: their current positions are available, in this order, from
+     * tracked_positions() at any time, at no extra pass over the points.
+     */
+    void
+    track(const std::vector<types::particle_index> &ids);
+
+    /** Number of tracked points (the list given to track()). */
+    unsigned int
+    n_tracked() const
+    {
+      return n_tracked_slots;
+    }
+
+    /**
+     * For the tracked points, by slot: whether the point belongs to a rigid
+     * support and, if so, its increment in the next move() in place of the
+     * body's (BoundaryCurves::rigid_support_increments()).
+     */
+    void
+    set_rigid_increments(
+      const std::vector<std::pair<bool, Tensor<1, 2>>> &increments)
+    {
+      rigid_increments = increments;
+    }
+
+    /** Current positions and stresses of the tracked points, in the order
+     * given to track(), on every process. */
+    void
+    tracked_states(std::vector<Point<2>> &positions,
+                   std::vector<Voigt>    &stresses) const;
+
+    /** Whether a point with volume lies in @p cell. */
+    bool
+    holds_material(const DoFHandler<2>::active_cell_iterator &cell) const;
+
+    /**
+     * Finds which owned and ghost cells hold material (collective), for
+     * boundary_strain() and boundary_gradient(): a zero-volume point next
+     * to a ghost cell must take the same neighbour's field as it would on
+     * the process that owns that cell, or the result would depend on the
+     * partition. move() calls it itself; call it after the points changed
+     * cells and before the other two.
+     */
+    void
+    find_material_cells();
+
+    /**
+     * The strain increment of the grid field @p increment (with ghost
+     * values; plus @p prescribed if given) for a zero-volume point at local
+     * coordinates @p st of @p cell, a cell without material: the strain of
+     * the nearest face neighbour that holds material, its affine field
+     * extended to the point (a boundary point on a grid line is sorted into
+     * the cell above or right of it, and a boundary that has just entered a
+     * cell leaves a sliver whose outer vertices hold nothing); @p cell's own
+     * if no neighbour does.
+     */
+    Voigt
+    boundary_strain(
+      const Q1CellKernel                               &kernel,
+      const DoFHandler<2>::active_cell_iterator        &cell,
+      const Point<2>                                   &st,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
+    /** The displacement gradient of the same field as boundary_strain():
+     * grad u, row = component. */
+    Tensor<2, 2>
+    boundary_gradient(
+      const Q1CellKernel                               &kernel,
+      const DoFHandler<2>::active_cell_iterator        &cell,
+      const Point<2>                                   &st,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
+    /** The nodal values of @p increment plus @p prescribed (if given) on
+     * the DoFs of @p cell, whose indices @p dof_indices receives. */
+    static Q1CellKernel::LocalVector
+    cell_increment(const DoFHandler<2>::active_cell_iterator        &cell,
+                   const LinearAlgebra::distributed::Vector<double> &increment,
+                   const LinearAlgebra::distributed::Vector<double> *prescribed,
+                   std::vector<types::global_dof_index> &dof_indices);
+
+    /** Names of the properties in the points' ParaView files (PointOutput). */
+    static std::vector<std::string>
+    property_names(const unsigned int n_properties = Property::n_properties);
+
+  private:
+    /** Inserts one point if its cell is locally owned; returns whether. */
+    bool
+    insert(const Point<2>             &position,
+           const double                volume,
+           const types::particle_index id);
+
+    /** The cell whose field boundary_strain() extends to a point at @p st
+     * of @p cell, and the point's local coordinates in it. */
+    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>
+    boundary_source(const DoFHandler<2>::active_cell_iterator &cell,
+                    const Point<2>                            &st) const;
+
+    /** Whether each owned and ghost cell holds material, by
+     * active_cell_index() (find_material_cells()). */
+    std::vector<bool> material_cells;
+
+    /** Records position and stress of a point if it is tracked. */
+    void
+    record_if_tracked(const types::particle_index   id,
+                      const Point<2>               &x,
+                      const ArrayView<const double> properties);
+
+    const BackgroundGrid         &grid;
+    unsigned int                  n_point_properties;
+    Particles::ParticleHandler<2> particles;
+    types::particle_index         n_material_points = 0;
+    types::particle_index         next_id           = 0;
+
+    /** By tracked slot: set_rigid_increments(). */
+    std::vector<std::pair<bool, Tensor<1, 2>>> rigid_increments;
+    /** Whether a particle id is in the tracked list: a bit per id, so
+     * that the test in the loops over all points costs little memory. */
+    std::vector<bool> is_tracked;
+    /** (id, slot in the tracked list) of the tracked points, by id. */
+    std::vector<std::pair<types::particle_index, unsigned int>> tracked_slots;
+
+    /** Slot of particle @p id in the tracked list, or invalid. */
+    unsigned int
+    tracked_slot(const types::particle_index id) const
+    {
+      if (id >= is_tracked.size() || !is_tracked[id])
+        return numbers::invalid_unsigned_int;
+      return std::lower_bound(tracked_slots.begin(),
+                              tracked_slots.end(),
+                              id,
+                              [](const auto                 &entry,
+                                 const types::particle_index i) {
+                                return entry.first < i;
+                              })
+        ->second;
+    }
+    /** Length of the tracked list given to track(). */
+    unsigned int n_tracked_slots = 0;
+    /** State of the locally owned tracked points: slot, x, y, and stress. */
+    std::vector<std::array<double, 6>> tracked_local;
+  };
+} // namespace bsmpm
+
+#endif

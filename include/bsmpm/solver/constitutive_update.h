@@ -1,0 +1,262 @@
+#ifndef bsmpm_constitutive_update_h
+#define bsmpm_constitutive_update_h
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/points/material_points.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * A constitutive model at the material points, integrated point by point:
+   * its share of the Newton system of a load step, and the update of the
+   * points' state once the step has converged (doc/newton.md,
+   * doc/finite-strain.md).
+   *
+   * The material's whole contribution comes from the points, each with its
+   * quadrature weight w_p (the moment-fitted weight in cut cells, else its
+   * volume). In small strain, for the increment d with strain increments
+   * de_p = B_p d,
+   *
+   *   f_int(d) = sum_p w_p B_p^T sigma(eps_e,n + de_p),
+   *   K_T(d)   = sum_p w_p B_p^T D_p B_p,
+   *
+   * D_p the algorithmic tangent. With B-bar, B_p is replaced by the
+   * modified strain columns (xx, yy, zz, engineering xy) whose volumetric
+   * part is the mean over the points of the cell.
+   *
+   * In finite strain (updated Lagrangian on the configuration at the start
+   * of the step) the increment gives every point a relative deformation
+   * gradient f_p = 1 + grad_n(u); the trial elastic state is
+   * b_e^tr = f b_e,n f^T, the model returns the Kirchhoff stress tau of
+   * eps^tr = ln(b_e^tr) / 2, and
+   *
+   *   f_int,a = sum_p (w_p / J_n,p) tau_p g_a,p,   g_a = f^-T grad_n N_a,
+   *
+   * with the consistent tangent derived in doc/finite-strain.md. With
+   * B-bar the volumetric part of ln f is replaced by that at the points'
+   * centroid (F-bar). The body force then acts on the points' masses.
+   */
+  class ConstitutiveUpdate
+  {
+  public:
+    enum class Kinematics
+    {
+      small_strain,
+      finite_strain
+    };
+
+    /**
+     * With @p b_bar, the volumetric strain of every point is replaced by
+     * the mean over the points of its cell (B-bar, doc/newton.md; F-bar in
+     * finite strain), which keeps isochoric plastic flow from locking the
+     * Q1 grid.
+     */
+    ConstitutiveUpdate(const ConstitutiveModel &model,
+                       const bool               b_bar,
+                       const Kinematics         kinematics);
+
+    Kinematics
+    kinematics() const
+    {
+      return point_kinematics;
+    }
+
+    /** Whether the material's tangent is symmetric: not with F-bar or a
+     * model without a symmetric tangent (doc/finite-strain.md). */
+    bool
+    symmetric_tangent() const
+    {
+      return model.symmetric_tangent() &&
+             !(b_bar && point_kinematics == Kinematics::finite_strain);
+    }
+
+    /** Finite strain: the body force per unit reference volume (rho_0
+     * lambda g) that assemble() integrates over the points' masses. */
+    void
+    set_body_force(const Tensor<1, 2> &force)
+    {
+      body_force = force;
+    }
+
+    /** Whether the points carry quadrature weights of their own
+     * (Property::weight, set by CutCellQuadrature); else their volume. */
+    void
+    use_quadrature_weights(const bool use)
+    {
+      quadrature_weights = use;
+    }
+
+    /**
+     * Adds K_T to @p tangent and f_int to @p internal_force for the
+     * increment @p increment (with ghost values) and, if given, the
+     * prescribed nodal values @p prescribed, through @p constraints.
+     * Neither is compressed. Returns the number of locally owned points with
+     * volume that yield.
+     */
+    unsigned long long
+    assemble(const MaterialPoints                             &points,
+             const BackgroundGrid                             &grid,
+             const Q1CellKernel                               &kernel,
+             const LinearAlgebra::distributed::Vector<double> &increment,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const AffineConstraints<double>                  &constraints,
+             TrilinosWrappers::SparseMatrix                   &tangent,
+             TrilinosWrappers::MPI::Vector &internal_force) const;
+
+    /**
+     * Stores the state at the end of the step in every point (tracking
+     * points too): elastic strain, equivalent plastic strain, stress
+     * (in-plane and zz) and the yield flag. Call it before
+     * MaterialPoints::move(), which then leaves the stress alone. Returns
+     * the number of points with volume that yielded, over all processes.
+     */
+    unsigned long long
+    commit(MaterialPoints                                   &points,
+           const BackgroundGrid                             &grid,
+           const Q1CellKernel                               &kernel,
+           const LinearAlgebra::distributed::Vector<double> &increment,
+           const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
+    /**
+     * How much of its elastic stiffness the material keeps round each grid
+     * vertex in the state that the last commit() stored, by DoF (both
+     * DoFs of a vertex hold its value, with ghost values); nullptr before
+     * the first commit(). For vertex v with DoFs v_x, v_y it is
+     *
+     *   rho_v = lambda_min(K_vv(D)) / lambda_min(K_vv(D_e)),
+     *
+     * K_vv(D) = sum_p w_p B_v,p^T D B_v,p the 2x2 block of v in the
+     * tangent of the points round v, with their algorithmic tangents D_p
+     * at the end of the step, and K_vv(D_e) the same with the elastic
+     * tangent: 1 where every point round v responds elastically (exactly:
+     * the same sums), towards 0 where the points are perfectly plastic and
+     * their flow takes the one direction in which they would hold v (the
+     * upper vertex of a cut cell whose points lie near its bottom).
+     * GhostPenalty::cell_qualities scales the support quality by it.
+     */
+    const LinearAlgebra::distributed::Vector<double> *
+    support_stiffness_ratios() const
+    {
+      return stiffness_ratio.size() > 0 ? &stiffness_ratio : nullptr;
+    }
+
+    /** Voigt form (xx, yy, zz, xy; engineering shear) of a 3D tangent. */
+    static Tensor<2, 4>
+    voigt_tangent(const SymmetricTensor<4, 3> &tangent);
+
+    /** A point of a cell as the cell's system sees it. */
+    struct PointView
+    {
+      Point<2>                st;
+      ArrayView<const double> props;
+    };
+
+    /**
+     * The internal force (minus the body force in finite strain) @p f and
+     * the tangent @p K (both set, not added to) of the points @p cell_points
+     * of one cell for the local increment @p d. Returns how many points
+     * with volume yield. Used by assemble(); public for the tests.
+     */
+    unsigned int
+    cell_system(const Q1CellKernel              &kernel,
+                const std::vector<PointView>    &cell_points,
+                const Q1CellKernel::LocalVector &d,
+                FullMatrix<double>              &K,
+                Vector<double>                  &f) const;
+
+  private:
+    /** How the strain of the points of one cell is computed. */
+    struct CellStrain
+    {
+      /** Standard strain of the cell: e[0] + s e[1] + t e[2]. */
+      std::array<Voigt, 3> coefficients;
+      /** B-bar: the local coordinates where the cell's mean volumetric
+       * strain is taken (the points' centroid). */
+      bool     use_b_bar = false;
+      Point<2> centroid;
+      /** F-bar: ln det f at the centroid and the spatial gradients of the
+       * shape functions there. */
+      double                      log_det_centroid = 0;
+      std::array<Tensor<1, 2>, 8> centroid_gradients;
+    };
+
+    CellStrain
+    cell_strain(const Q1CellKernel              &kernel,
+                const std::vector<PointView>    &cell_points,
+                const Q1CellKernel::LocalVector &d) const;
+
+    /** What the finite-strain kinematics give at one point. */
+    struct FiniteStrainPoint
+    {
+      /** Relative deformation gradient f, its determinant, and the
+       * spatial gradients g_i = f^-T grad_n N_i. */
+      Tensor<2, 2>                f;
+      double                      det_f = 1;
+      std::array<Tensor<1, 2>, 8> gradients;
+      /** Trial b_e (in-plane block). */
+      Tensor<2, 2> trial_b;
+      /** d ln(b_e^tr) / d b_e^tr on in-plane tensors, as a matrix on the
+       * components (xx, yy, xy) (see InPlaneFunction). */
+      Tensor<2, 3> log_derivative;
+    };
+
+    /** f and the trial elastic strain (into @p state) of a point at @p st
+     * with properties @p props; with F-bar, @p strain's centroid sets the
+     * volumetric part. */
+    FiniteStrainPoint
+    finite_strain_trial(const Q1CellKernel              &kernel,
+                        const CellStrain                &strain,
+                        const Point<2>                  &st,
+                        const ArrayView<const double>   &props,
+                        const Q1CellKernel::LocalVector &d,
+                        const Tensor<2, 2>              *gradient,
+                        ConstitutiveState               &state) const;
+
+    /** Standard in-plane columns @p B and the (B-bar) strain columns
+     * (xx, yy, zz, engineering xy) @p B_bar at @p st. */
+    static void
+    strain_columns(const Q1CellKernel          &kernel,
+                   const CellStrain            &strain,
+                   const Point<2>              &st,
+                   std::array<Voigt, 8>        &B,
+                   std::array<Tensor<1, 4>, 8> &B_bar);
+
+    /** The (B-bar) strain increment (xx, yy, zz, engineering xy) of the
+     * local increment @p d at @p st; fills the columns as
+     * strain_columns(). */
+    static Tensor<1, 4>
+    strain_increment(const Q1CellKernel              &kernel,
+                     const CellStrain                &strain,
+                     const Point<2>                  &st,
+                     const Q1CellKernel::LocalVector &d,
+                     std::array<Voigt, 8>            &B,
+                     std::array<Tensor<1, 4>, 8>     &B_bar);
+
+    /** The model's response to the strain increment @p de (xx, yy, zz,
+     * engineering xy) of the point with properties @p props; @p state
+     * returns the updated state. */
+    ConstitutiveResponse
+    respond(const ArrayView<const double> &props,
+            const Tensor<1, 4>            &de,
+            ConstitutiveState             &state) const;
+
+    const ConstitutiveModel &model;
+    const bool               b_bar;
+    const Kinematics         point_kinematics;
+    bool                     quadrature_weights = false;
+    Tensor<1, 2>             body_force;
+    /** See support_stiffness_ratios(). */
+    mutable LinearAlgebra::distributed::Vector<double> stiffness_ratio;
+  };
+} // namespace bsmpm
+
+#endif

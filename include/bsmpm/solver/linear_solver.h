@@ -1,0 +1,159 @@
+#ifndef bsmpm_linear_solver_h
+#define bsmpm_linear_solver_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/solver/geometric_multigrid.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Solves the linear system of a load step: a sparse direct solver (MUMPS
+   * through Amesos, KLU where MUMPS is missing), or CG preconditioned by
+   * Trilinos ML's algebraic multigrid with the two translations of plane
+   * elasticity as near-null space, or CG preconditioned by a geometric
+   * multigrid on the uniform grid (GeometricMultigrid). "automatic" takes the
+   * direct solver up to a number of unknowns and CG beyond, with the
+   * geometric multigrid where the grid can be coarsened and ML elsewhere.
+   */
+  class LinearSolver
+  {
+  public:
+    enum class Method
+    {
+      direct,
+      cg_amg,
+      cg_gmg,
+      automatic
+    };
+
+    struct Report
+    {
+      std::string method;
+      /** CG iterations (0 for a direct solve). */
+      unsigned int iterations = 0;
+      /** Steps of iterative refinement after a direct solve. */
+      unsigned int refinement_steps = 0;
+      /** ||K x - b|| / ||b|| after the solve. */
+      double relative_residual = 0;
+      /** cg amg, cg gmg: whether the multigrid hierarchy of an earlier solve
+       * served again (see 'Preconditioner reuse'). */
+      bool reused_preconditioner = false;
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Solves; in automatic mode, a CG failure makes this and every later
+     * solve direct. An unsymmetric @p matrix (not @p symmetric) is solved
+     * by GMRES with the same preconditioner instead of CG. */
+    Report
+    solve(const TrilinosWrappers::SparseMatrix &matrix,
+          TrilinosWrappers::MPI::Vector        &solution,
+          const TrilinosWrappers::MPI::Vector  &rhs,
+          const DoFHandler<2>                  &dof_handler,
+          const bool                            symmetric = true) const;
+
+    /**
+     * An estimate of the spectral condition number of @p matrix: the ratio
+     * of the extreme eigenvalues of the Lanczos tridiagonal matrix that
+     * unpreconditioned CG builds on the system (at most 'Condition estimate
+     * iterations' steps; fewer steps give a lower bound). Only when
+     * 'Estimate condition number' is on (see estimates_condition()).
+     */
+    double
+    estimate_condition_number(const TrilinosWrappers::SparseMatrix &matrix,
+                              const TrilinosWrappers::MPI::Vector  &rhs) const;
+
+    bool
+    estimates_condition() const
+    {
+      return estimate_condition;
+    }
+
+  private:
+    /** Sparse LU with iterative refinement. */
+    Report
+    solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
+                 TrilinosWrappers::MPI::Vector        &solution,
+                 const TrilinosWrappers::MPI::Vector  &rhs) const;
+
+    /** cg amg, cg gmg: the multigrid preconditioner, kept for later
+     * solves. */
+    void
+    prepare_preconditioner(const TrilinosWrappers::SparseMatrix &matrix,
+                           const DoFHandler<2>                  &dof_handler,
+                           Report                               &report) const;
+
+    /** Whether CG takes the geometric multigrid (cg gmg, or automatic on
+     * a grid that coarsens at least once) rather than ML. */
+    bool
+    geometric_multigrid(const DoFHandler<2> &dof_handler) const;
+
+    /** Forgets the multigrid hierarchy (AMG or GMG). */
+    void
+    reset_preconditioner() const
+    {
+      amg.reset();
+      gmg.reset();
+    }
+
+    /** The relative tolerance of CG ('Tolerance', or the automatic one). */
+    double
+    relative_tolerance(const DoFHandler<2> &dof_handler) const;
+
+    enum class Reuse
+    {
+      none,
+      aggregates,
+      whole
+    };
+
+    Method       method              = Method::automatic;
+    double       tolerance           = 0;
+    Reuse        reuse               = Reuse::whole;
+    unsigned int max_iterations      = 10000;
+    unsigned int automatic_threshold = 100000;
+    unsigned int max_refinements     = 3;
+    bool         estimate_condition  = false;
+    /** Automatic mode: CG did not converge in an earlier load step. */
+    mutable bool cg_failed            = false;
+    unsigned int condition_iterations = 2000;
+
+    /** The AMG hierarchy of the last CG solve, the matrix it was built on
+     * and a fingerprint of that matrix's structure (the pattern and the
+     * decoupled rows: constrained DoFs). A matrix rebuilt with another
+     * pattern, even at the same address, has another fingerprint. */
+    mutable std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    mutable const void   *amg_matrix    = nullptr;
+    mutable std::uint64_t amg_structure = 0;
+    /** cg gmg: the geometric multigrid, kept like the AMG (amg_matrix and
+     * amg_structure describe the matrix either was built on). */
+    mutable std::unique_ptr<GeometricMultigrid> gmg;
+    GeometricMultigrid::AdditionalData          gmg_data;
+    /** CG iterations of the solve for which the hierarchy was built. */
+    mutable unsigned int fresh_iterations = 0;
+    /** The automatic tolerance and the grid it was computed for. */
+    mutable double       automatic_tolerance = 1e-8;
+    mutable unsigned int cached_levels       = 0;
+    /** The last CG solution: the first guess of the next solve if it is a
+     * better one than zero. */
+    mutable TrilinosWrappers::MPI::Vector last_solution;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,156 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/boundary/nitsche_boundary.h>
+
+namespace bsmpm
+{
+  namespace
+  {
+    bool
+    is_nitsche_support(const BoundaryCurve  &curve,
+                       const CurveCondition *condition)
+    {
+      return condition != nullptr && condition->is_support() &&
+             curve.dirichlet_method == BoundaryCurve::DirichletMethod::nitsche;
+    }
+
+    /** Traction sigma n of a Voigt stress. */
+    Tensor<1, 2>
+    traction(const Voigt &sigma, const Tensor<1, 2> &n)
+    {
+      return Tensor<1, 2>(
+        {sigma[0] * n[0] + sigma[2] * n[1], sigma[2] * n[0] + sigma[1] * n[1]});
+    }
+  } // namespace
+
+
+
+  void
+  NitscheBoundary::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nitsche");
+    prm.declare_entry("Penalty",
+                      "100",
+                      Patterns::Double(0.),
+                      "gamma in the penalty gamma E / h of Nitsche's method.");
+    prm.declare_entry("Gauss points per piece",
+                      "4",
+                      Patterns::Integer(1, 100),
+                      "Gauss points on each piece of a supported curve.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  NitscheBoundary::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nitsche");
+    penalty        = prm.get_double("Penalty");
+    n_gauss_points = prm.get_integer("Gauss points per piece");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  NitscheBoundary::assemble(const BoundaryCurves            &curves,
+                            const BackgroundGrid            &grid,
+                            const Q1CellKernel              &kernel,
+                            const LinearElasticMaterial     &material,
+                            const ExactSolution             *exact,
+                            const double                     increment_factor,
+                            const AffineConstraints<double> &constraints,
+                            TrilinosWrappers::SparseMatrix  &matrix,
+                            TrilinosWrappers::MPI::Vector   &rhs,
+                            const BoundaryCurve             *only) const
+  {
+    std::string            problem;
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    const QGauss<1>        gauss(n_gauss_points);
+    const double           beta =
+      penalty * material.youngs_modulus() / grid.min_cell_size();
+    const Tensor<2, 3> &C = material.stiffness();
+
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    std::array<Tensor<1, 2>, n>          value, stress_n;
+
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        {
+          const CurveCondition *condition =
+            curve.condition_of_segment(piece.segment);
+          if (!is_nitsche_support(curve, condition) ||
+              (only != nullptr && &curve != only))
+            continue;
+          const auto cell = grid.locally_owned_cell(piece.cell);
+          if (cell == grid.dof_handler().end())
+            continue;
+
+          // A roller and a prescribed normal displacement hold the normal
+          // component only.
+          const bool          roller = condition->holds_normal_component_only();
+          const BSplineCurve &spline = *curve.spline;
+          const double        du     = piece.u_end - piece.u_begin;
+          cell_matrix                = 0;
+          cell_rhs                   = 0;
+
+          for (unsigned int q = 0; q < gauss.size(); ++q)
+            {
+              const double       u  = piece.u_begin + gauss.point(q)[0] * du;
+              const Point<2>     x  = spline.value(u);
+              const Tensor<1, 2> nv = spline.outward_normal(u);
+              const double       ds =
+                spline.derivative(u).norm() * du * gauss.weight(q);
+              const Point<2> st = grid.local_coordinates(x, piece.cell);
+
+              // For a roller, all products are taken along n only.
+              const auto project = [&](const Tensor<1, 2> &v) {
+                return roller ? Tensor<1, 2>((v * nv) * nv) : v;
+              };
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  value[i]    = kernel.shape_value(i, st);
+                  stress_n[i] = traction(C * kernel.strain_column(i, st), nv);
+                }
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  cell_matrix(i, j) +=
+                    ds * (-project(stress_n[j]) * value[i] -
+                          project(stress_n[i]) * value[j] +
+                          beta * project(value[i]) * value[j]);
+
+              // Reaction of the previous steps.
+              const Tensor<1, 2> reaction =
+                project(traction(curve.stress_at(piece.segment, u), nv));
+
+              // The prescribed increment; for a normal displacement
+              // g = g_n n, so that the projected terms give
+              // (u . n - g_n) (v . n).
+              Tensor<1, 2> g;
+              if (condition->kind == CurveCondition::Kind::displacement)
+                g =
+                  increment_factor * (condition->function ?
+                                        condition->function_value(x, problem) :
+                                        exact->displacement(x));
+              else if (condition->kind ==
+                       CurveCondition::Kind::normal_displacement)
+                g = increment_factor *
+                    (condition->function ?
+                       condition->scalar_function_value(x, problem) :
+                       exact->displacement(x) * nv) *
+                    nv;
+              for (unsigned int i = 0; i < n; ++i)
+                cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
+                                     beta * value[i] * g);
+            }
+          cell->get_dof_indices(dof_indices);
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, dof_indices, matrix, rhs);
+        }
+    ParameterTools::throw_if_any(problem, grid.mpi_communicator());
+  }
+} // namespace bsmpm

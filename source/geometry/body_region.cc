@@ -1,0 +1,465 @@
+#include <deal.II/base/numbers.h>
+
+#include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/geometry/body_region.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace bsmpm
+{
+  void
+  BodyRegion::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Body region");
+    prm.declare_entry("Shape",
+                      "rectangle",
+                      Patterns::Selection(
+                        "rectangle|rotated rectangle|"
+                        "annulus sector|rectangle minus disc"),
+                      "Shape of the body at the start of the run.");
+    prm.declare_entry("Lower left corner",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "rectangle, rectangle minus disc: lower left corner.");
+    prm.declare_entry("Upper right corner",
+                      "1, 1",
+                      ParameterTools::point_pattern(),
+                      "rectangle, rectangle minus disc: upper right corner.");
+    prm.declare_entry("Center",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "rotated rectangle: its centre; annulus sector: the "
+                      "centre of its circles.");
+    prm.declare_entry("Width",
+                      "1",
+                      Patterns::Double(0.),
+                      "rotated rectangle: side length along its own x axis.");
+    prm.declare_entry("Height",
+                      "1",
+                      Patterns::Double(0.),
+                      "rotated rectangle: side length along its own y axis.");
+    prm.declare_entry("Angle",
+                      "0",
+                      Patterns::Double(),
+                      "rotated rectangle: counter-clockwise rotation in "
+                      "degrees.");
+    prm.declare_entry("Inner radius",
+                      "1",
+                      Patterns::Double(0.),
+                      "annulus sector: inner radius.");
+    prm.declare_entry("Outer radius",
+                      "2",
+                      Patterns::Double(0.),
+                      "annulus sector: outer radius.");
+    prm.declare_entry("Start angle",
+                      "0",
+                      Patterns::Double(),
+                      "annulus sector: first angle in degrees.");
+    prm.declare_entry("End angle",
+                      "90",
+                      Patterns::Double(),
+                      "annulus sector: last angle in degrees.");
+    prm.declare_entry("Disc center",
+                      "0, 0",
+                      ParameterTools::point_pattern(),
+                      "rectangle minus disc: centre of the removed disc.");
+    prm.declare_entry("Disc radius",
+                      "0.5",
+                      Patterns::Double(0.),
+                      "rectangle minus disc: radius of the removed disc.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  BodyRegion::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Body region");
+    const std::string shape = prm.get("Shape");
+    region_shape =
+      shape == "rectangle" ?
+        Shape::rectangle :
+        (shape == "rotated rectangle" ?
+           Shape::rotated_rectangle :
+           (shape == "annulus sector" ? Shape::annulus_sector :
+                                        Shape::rectangle_minus_disc));
+    lower_left           = ParameterTools::get_point(prm, "Lower left corner");
+    upper_right          = ParameterTools::get_point(prm, "Upper right corner");
+    center               = ParameterTools::get_point(prm, "Center");
+    width                = prm.get_double("Width");
+    height               = prm.get_double("Height");
+    angle                = prm.get_double("Angle") * numbers::PI / 180.;
+    annulus.center       = center;
+    annulus.inner_radius = prm.get_double("Inner radius");
+    annulus.outer_radius = prm.get_double("Outer radius");
+    annulus.start_angle  = prm.get_double("Start angle") * numbers::PI / 180.;
+    annulus.end_angle    = prm.get_double("End angle") * numbers::PI / 180.;
+    disc_center          = ParameterTools::get_point(prm, "Disc center");
+    disc_radius          = prm.get_double("Disc radius");
+    prm.leave_subsection();
+
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+        case Shape::rectangle_minus_disc:
+          AssertThrow(upper_right[0] > lower_left[0] &&
+                        upper_right[1] > lower_left[1],
+                      ExcMessage("Body region: the upper right corner must lie "
+                                 "above and to the right of the lower left "
+                                 "corner."));
+          if (region_shape == Shape::rectangle_minus_disc)
+            AssertThrow(disc_radius > 0,
+                        ExcMessage("Body region: the Disc radius of a "
+                                   "rectangle minus disc must be positive "
+                                   "(a rectangle without a hole is the shape "
+                                   "'rectangle')."));
+          if (region_shape == Shape::rectangle_minus_disc)
+            for (unsigned int d = 0; d < 2; ++d)
+              AssertThrow((disc_center[d] == lower_left[d] ||
+                           disc_center[d] - disc_radius >= lower_left[d]) &&
+                            (disc_center[d] == upper_right[d] ||
+                             disc_center[d] + disc_radius <= upper_right[d]),
+                          ExcMessage("Body region: the disc must lie inside "
+                                     "the rectangle or be centred on its "
+                                     "edges (as a quarter or half hole)."));
+          break;
+        case Shape::rotated_rectangle:
+          AssertThrow(width > 0 && height > 0,
+                      ExcMessage("Body region: width and height of a rotated "
+                                 "rectangle must be positive."));
+          break;
+        case Shape::annulus_sector:
+          AssertThrow(annulus.outer_radius > annulus.inner_radius &&
+                        annulus.end_angle > annulus.start_angle &&
+                        annulus.end_angle - annulus.start_angle <=
+                          2 * numbers::PI,
+                      ExcMessage("Body region: an annulus sector needs "
+                                 "inner radius < outer radius and start angle "
+                                 "< end angle <= start angle + 360."));
+          break;
+      }
+  }
+
+
+
+  bool
+  BodyRegion::contains(const Point<2> &p) const
+  {
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+          return p[0] >= lower_left[0] && p[0] <= upper_right[0] &&
+                 p[1] >= lower_left[1] && p[1] <= upper_right[1];
+        case Shape::rectangle_minus_disc:
+          return p[0] >= lower_left[0] && p[0] <= upper_right[0] &&
+                 p[1] >= lower_left[1] && p[1] <= upper_right[1] &&
+                 p.distance(disc_center) >= disc_radius;
+        case Shape::rotated_rectangle:
+          {
+            const Tensor<1, 2> d = p - center;
+            const double       c = std::cos(angle), s = std::sin(angle);
+            const double       x = c * d[0] + s * d[1];
+            const double       y = -s * d[0] + c * d[1];
+            return std::abs(x) <= width / 2 && std::abs(y) <= height / 2;
+          }
+        case Shape::annulus_sector:
+          {
+            const Tensor<1, 2> d = p - annulus.center;
+            const double       r = d.norm();
+            if (r < annulus.inner_radius || r > annulus.outer_radius)
+              return false;
+            // Angle measured from the start angle, in [0, 2 pi).
+            double theta = std::atan2(d[1], d[0]) - annulus.start_angle;
+            theta -= 2 * numbers::PI * std::floor(theta / (2 * numbers::PI));
+            return theta <= annulus.end_angle - annulus.start_angle;
+          }
+      }
+    return false;
+  }
+
+
+
+  double
+  BodyRegion::area() const
+  {
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+          return (upper_right[0] - lower_left[0]) *
+                 (upper_right[1] - lower_left[1]);
+        case Shape::rectangle_minus_disc:
+          {
+            // parse_parameters() admits discs inside the rectangle or centred
+            // on its edges or corners: a whole, half or quarter hole.
+            const double rect = (upper_right[0] - lower_left[0]) *
+                                (upper_right[1] - lower_left[1]);
+            double fraction = 1.;
+            for (unsigned int d = 0; d < 2; ++d)
+              if (disc_center[d] == lower_left[d] ||
+                  disc_center[d] == upper_right[d])
+                fraction /= 2;
+            return rect - fraction * numbers::PI * disc_radius * disc_radius;
+          }
+        case Shape::rotated_rectangle:
+          return width * height;
+        case Shape::annulus_sector:
+          return (annulus.outer_radius * annulus.outer_radius -
+                  annulus.inner_radius * annulus.inner_radius) /
+                 2 * (annulus.end_angle - annulus.start_angle);
+      }
+    return 0;
+  }
+
+
+
+  std::array<Point<2>, 4>
+  BodyRegion::corners() const
+  {
+    if (region_shape == Shape::rotated_rectangle)
+      {
+        const double c = std::cos(angle), s = std::sin(angle);
+        const auto   corner = [&](const double x, const double y) {
+          return center + Tensor<1, 2>({c * x - s * y, s * x + c * y});
+        };
+        return {{corner(-width / 2, -height / 2),
+                 corner(width / 2, -height / 2),
+                 corner(width / 2, height / 2),
+                 corner(-width / 2, height / 2)}};
+      }
+    return {{lower_left,
+             Point<2>(upper_right[0], lower_left[1]),
+             upper_right,
+             Point<2>(lower_left[0], upper_right[1])}};
+  }
+
+
+
+  void
+  BodyRegion::boundary_parts(
+    std::vector<std::string>                           &names,
+    std::vector<std::function<Point<2>(const double)>> &parts) const
+  {
+    names.clear();
+    parts.clear();
+    if (region_shape == Shape::annulus_sector)
+      {
+        const Sector &a = annulus;
+        const auto arc = [a](const double r, const double t0, const double t1) {
+          return [=](const double f) {
+            const double t = t0 + f * (t1 - t0);
+            return Point<2>(a.center[0] + r * std::cos(t),
+                            a.center[1] + r * std::sin(t));
+          };
+        };
+        const auto ray = [a](const double t, const double r0, const double r1) {
+          return [=](const double f) {
+            const double r = r0 + f * (r1 - r0);
+            return Point<2>(a.center[0] + r * std::cos(t),
+                            a.center[1] + r * std::sin(t));
+          };
+        };
+        names = {"start edge", "outer arc", "end edge", "inner arc"};
+        parts = {ray(a.start_angle, a.inner_radius, a.outer_radius),
+                 arc(a.outer_radius, a.start_angle, a.end_angle),
+                 ray(a.end_angle, a.outer_radius, a.inner_radius),
+                 arc(a.inner_radius, a.end_angle, a.start_angle)};
+      }
+    else
+      {
+        const auto                       c          = corners();
+        const std::array<std::string, 4> edge_names = {
+          {"bottom", "right", "top", "left"}};
+        const auto segment = [](const Point<2> p0, const Point<2> p1) {
+          return [=](const double f) { return Point<2>(p0 + f * (p1 - p0)); };
+        };
+        if (region_shape != Shape::rectangle_minus_disc)
+          for (unsigned int k = 0; k < 4; ++k)
+            {
+              names.push_back(edge_names[k]);
+              parts.push_back(segment(c[k], c[(k + 1) % 4]));
+            }
+        else
+          {
+            // Walk round the rectangle; where the disc meets an edge, the
+            // edge stops at the disc and the hole's arc (clockwise, the
+            // body on its left) leads to where the boundary goes on.
+            const Point<2> C   = disc_center;
+            const double   r   = disc_radius;
+            const double   eps = 1e-12 * (upper_right - lower_left).norm();
+            const auto     arc = [C, r](const Point<2> a, const Point<2> b) {
+              const double t0    = std::atan2(a[1] - C[1], a[0] - C[0]);
+              double       sweep = t0 - std::atan2(b[1] - C[1], b[0] - C[0]);
+              sweep -= 2 * numbers::PI * std::floor(sweep / (2 * numbers::PI));
+              if (sweep == 0)
+                sweep = 2 * numbers::PI;
+              return [=](const double f) {
+                return Point<2>(C[0] + r * std::cos(t0 - f * sweep),
+                                C[1] + r * std::sin(t0 - f * sweep));
+              };
+            };
+            bool     open_arc = false; // an arc waits for its end point
+            Point<2> arc_start;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                const Point<2>     p0 = c[k], p1 = c[(k + 1) % 4];
+                const double       L   = p0.distance(p1);
+                const Tensor<1, 2> e   = (p1 - p0) / L;
+                const Tensor<1, 2> d   = C - p0;
+                const double       tau = d * e;
+                const bool         on_edge =
+                  std::abs(d[0] * e[1] - d[1] * e[0]) < eps && tau > -eps &&
+                  tau < L + eps;
+                double begin = 0, end = L;
+                if (on_edge && tau < eps)
+                  begin = r;
+                const bool splits = on_edge && tau >= eps && tau <= L - eps;
+                const bool ends   = on_edge && tau > L - eps;
+                if (open_arc)
+                  {
+                    names.push_back("hole");
+                    parts.push_back(arc(arc_start, p0 + begin * e));
+                    open_arc = false;
+                  }
+                if (splits)
+                  {
+                    names.push_back(edge_names[k]);
+                    parts.push_back(segment(p0, p0 + (tau - r) * e));
+                    names.push_back("hole");
+                    parts.push_back(
+                      arc(p0 + (tau - r) * e, p0 + (tau + r) * e));
+                    begin = tau + r;
+                  }
+                if (ends)
+                  end = L - r;
+                names.push_back(edge_names[k]);
+                parts.push_back(segment(p0 + begin * e, p0 + end * e));
+                if (ends)
+                  {
+                    open_arc  = true;
+                    arc_start = p0 + end * e;
+                  }
+              }
+            if (open_arc) // the disc sits on the first corner
+              {
+                names.insert(names.begin(), "hole");
+                parts.insert(parts.begin(),
+                             arc(arc_start,
+                                 c[0] +
+                                   r * (c[1] - c[0]) / c[0].distance(c[1])));
+              }
+          }
+      }
+  }
+
+
+
+  BodyRegion::BoundaryPoints
+  BodyRegion::boundary_points(const std::string &edge,
+                              const unsigned int n) const
+  {
+    AssertThrow(n >= 2,
+                ExcMessage("Boundary curves: at least 2 points per edge are "
+                           "needed, got " +
+                           std::to_string(n) + "."));
+    // The parts of the boundary, each from its first point to its last, in
+    // counter-clockwise order round the body.
+    std::vector<std::string>                           names;
+    std::vector<std::function<Point<2>(const double)>> parts;
+    boundary_parts(names, parts);
+    // A disc inside the rectangle is a hole of its own: a closed curve.
+    if (region_shape == Shape::rectangle_minus_disc && edge == "hole" &&
+        std::find(names.begin(), names.end(), "hole") == names.end())
+      {
+        BoundaryPoints result;
+        result.closed = true;
+        for (unsigned int i = 0; i + 1 < n; ++i)
+          {
+            const double t = -2 * numbers::PI * i / (n - 1);
+            result.points.emplace_back(disc_center[0] +
+                                         disc_radius * std::cos(t),
+                                       disc_center[1] +
+                                         disc_radius * std::sin(t));
+          }
+        return result;
+      }
+
+    BoundaryPoints result;
+    const auto     sample = [n](const auto &part, const bool skip_last) {
+      std::vector<Point<2>> points;
+      for (unsigned int i = 0; i + (skip_last ? 1 : 0) < n; ++i)
+        points.push_back(part(double(i) / (n - 1)));
+      return points;
+    };
+    if (edge == "boundary")
+      {
+        result.closed = true;
+        for (const auto &part : parts)
+          {
+            result.corners.push_back(result.points.size());
+            const auto points = sample(part, true);
+            result.points.insert(result.points.end(),
+                                 points.begin(),
+                                 points.end());
+          }
+        return result;
+      }
+    AssertThrow(std::count(names.begin(), names.end(), edge) <= 1,
+                ExcMessage("Boundary curves: the hole splits the edge '" +
+                           edge +
+                           "' of the body region in two; give its parts "
+                           "by coordinates, or use 'boundary'."));
+    for (unsigned int k = 0; k < names.size(); ++k)
+      if (names[k] == edge)
+        {
+          result.points = sample(parts[k], false);
+          return result;
+        }
+    std::string known;
+    for (const auto &name : names)
+      known += "'" + name + "', ";
+    AssertThrow(false,
+                ExcMessage("Boundary curves: the body region has no edge '" +
+                           edge + "'; it has " + known + "and 'boundary'."));
+    return result;
+  }
+
+
+
+  BoundingBox<2>
+  BodyRegion::bounding_box() const
+  {
+    switch (region_shape)
+      {
+        case Shape::annulus_sector:
+          {
+            // Sample the arcs densely enough and add the extreme points of the
+            // circles that the sector contains.
+            std::vector<Point<2>> points;
+            const unsigned int    n = 720;
+            for (unsigned int k = 0; k <= n; ++k)
+              {
+                const double a =
+                  annulus.start_angle +
+                  (annulus.end_angle - annulus.start_angle) * k / n;
+                for (const double r :
+                     {annulus.inner_radius, annulus.outer_radius})
+                  points.emplace_back(annulus.center[0] + r * std::cos(a),
+                                      annulus.center[1] + r * std::sin(a));
+              }
+            BoundingBox<2> box(points);
+            // Round the sampled extremes outwards by the chord sagitta.
+            box.extend(annulus.outer_radius * (1 - std::cos(numbers::PI / n)));
+            return box;
+          }
+        default:
+          {
+            const auto corner = corners();
+            return BoundingBox<2>(
+              std::vector<Point<2>>(corner.begin(), corner.end()));
+          }
+      }
+  }
+} // namespace bsmpm

@@ -1,0 +1,168 @@
+#include <bsmpm/io/run_summary.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+namespace bsmpm
+{
+  namespace
+  {
+    std::string
+    json_number(const double x)
+    {
+      if (!std::isfinite(x))
+        return "null";
+      char buffer[32];
+      std::snprintf(buffer, sizeof(buffer), "%.17g", x);
+      return buffer;
+    }
+
+    std::string
+    json_string(const std::string &s)
+    {
+      std::string quoted = "\"";
+      for (const char c : s)
+        {
+          if (c == '"' || c == '\\')
+            quoted += '\\';
+          quoted += c;
+        }
+      return quoted + "\"";
+    }
+
+    void
+    write_map(std::ostream                        &out,
+              const std::string                   &name,
+              const std::map<std::string, double> &values,
+              const bool                           last = false)
+    {
+      out << "  " << json_string(name) << ": {";
+      bool first = true;
+      for (const auto &[key, value] : values)
+        {
+          out << (first ? "\n" : ",\n") << "    " << json_string(key) << ": "
+              << json_number(value);
+          first = false;
+        }
+      out << (values.empty() ? "}" : "\n  }") << (last ? "\n" : ",\n");
+    }
+  } // namespace
+
+
+
+  void
+  RunSummary::write_json(std::ostream &out) const
+  {
+    out << "{\n";
+    out << "  \"scene\": " << json_string(scene) << ",\n";
+    out << "  \"n_cells\": " << n_cells << ",\n";
+    out << "  \"n_dofs\": " << n_dofs << ",\n";
+    out << "  \"n_material_points\": " << n_material_points << ",\n";
+    out << "  \"n_tracking_points\": " << n_tracking_points << ",\n";
+    out << "  \"load_steps\": " << load_steps << ",\n";
+    out << "  \"steps\": [";
+    for (unsigned int i = 0; i < steps.size(); ++i)
+      {
+        const Step &s = steps[i];
+        out << (i == 0 ? "\n" : ",\n") << "    {\"step\": " << s.number
+            << ", \"load_factor\": " << json_number(s.load_factor)
+            << ", \"solver\": " << json_string(s.solver)
+            << ", \"iterations\": " << s.iterations
+            << ", \"refinement_steps\": " << s.refinement_steps
+            << ", \"relative_residual\": " << json_number(s.relative_residual)
+            << ", \"active_cells\": " << s.n_active_cells;
+        if (nonlinear)
+          {
+            out << ", \"increments\": " << s.increments
+                << ", \"yielded_points\": " << s.n_yielded
+                << ", \"newton_residuals\": [";
+            for (unsigned int k = 0; k < s.newton_residuals.size(); ++k)
+              out << (k ? ", " : "") << json_number(s.newton_residuals[k]);
+            out << "], \"newton_corrections\": [";
+            for (unsigned int k = 0; k < s.newton_corrections.size(); ++k)
+              out << (k ? ", " : "") << json_number(s.newton_corrections[k]);
+            out << "]";
+          }
+        out << ", \"quantities\": {";
+        bool first = true;
+        for (const auto &[key, value] : s.quantities)
+          {
+            out << (first ? "" : ", ") << json_string(key) << ": "
+                << json_number(value);
+            first = false;
+          }
+        out << "}}";
+      }
+    out << (steps.empty() ? "],\n" : "\n  ],\n");
+    write_map(out, "errors", errors);
+    write_map(out, "quantities", quantities);
+    write_map(out, "timing", timing, true);
+    out << "}\n";
+  }
+
+
+
+  void
+  RunSummary::print_header(std::ostream &out) const
+  {
+    out << "scene              " << scene << '\n'
+        << "cells              " << n_cells << '\n'
+        << "dofs               " << n_dofs << '\n'
+        << "material points    " << n_material_points << '\n';
+    if (n_tracking_points > 0)
+      out << "tracking points    " << n_tracking_points << '\n';
+    out << "load steps         " << load_steps << '\n';
+  }
+
+
+
+  void
+  RunSummary::print_step(std::ostream &out, const Step &s) const
+  {
+    if (s.number == 1)
+      out << "\n step  load factor  active cells  solver              "
+             "iterations  residual"
+          << (nonlinear ? "  newton  yielded  |R_k|/|R_0|" : "") << '\n';
+    std::ostringstream line;
+    line << std::setw(5) << s.number << "  " << std::setw(11) << std::fixed
+         << std::setprecision(6) << s.load_factor << "  " << std::setw(12)
+         << s.n_active_cells << "  " << std::left << std::setw(18) << s.solver
+         << std::right << "  " << std::setw(10)
+         << (s.iterations > 0 ? std::to_string(s.iterations) : "-") << "  "
+         << std::scientific << std::setprecision(1)
+         << (s.relative_residual < 1e-12 ? 0. : s.relative_residual);
+    if (nonlinear)
+      {
+        line << "  " << std::setw(6) << s.newton_residuals.size() - s.increments
+             << "  " << std::setw(7) << s.n_yielded << " ";
+        if (s.increments > 1)
+          line << " (" << s.increments << " increments)";
+        else
+          for (const double r : s.newton_residuals)
+            line << ' ' << std::setprecision(1) << r;
+      }
+    line << '\n';
+    out << line.str();
+  }
+
+
+
+  void
+  RunSummary::print_results(std::ostream &out) const
+  {
+    const auto print = [&out](const char *title, const auto &values) {
+      if (values.empty())
+        return;
+      out << '\n' << title << '\n';
+      for (const auto &[key, value] : values)
+        if (key.find("_at_") == std::string::npos) // places: in the JSON only
+          out << "  " << std::left << std::setw(24) << key << std::right
+              << std::scientific << std::setprecision(6) << value << '\n';
+    };
+    print("errors", errors);
+    print("quantities", quantities);
+    out << std::defaultfloat;
+  }
+} // namespace bsmpm

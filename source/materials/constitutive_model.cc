@@ -1,0 +1,345 @@
+#include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/materials/drucker_prager_plasticity.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/materials/von_mises_plasticity.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bsmpm
+{
+  ConstitutiveModel::ConstitutiveModel(const double youngs_modulus,
+                                       const double poissons_ratio)
+    : E(youngs_modulus)
+    , nu(poissons_ratio)
+    , mu(youngs_modulus / (2. * (1. + poissons_ratio)))
+    , kappa(youngs_modulus / (3. * (1. - 2. * poissons_ratio)))
+  {
+    AssertThrow(std::isfinite(E) && E > 0.,
+                ExcMessage("Material: Young's modulus must be positive, got " +
+                           std::to_string(E) + "."));
+    AssertThrow(std::isfinite(nu) && nu > -1. && nu < 0.5,
+                ExcMessage("Material: Poisson's ratio must lie in (-1, 0.5), "
+                           "got " +
+                           std::to_string(nu) + "."));
+    stiffness_3d = kappa * outer_product(unit_symmetric_tensor<3>(),
+                                         unit_symmetric_tensor<3>()) +
+                   2. * mu * deviator_tensor<3>();
+  }
+
+
+
+  void
+  ConstitutiveModel::add_deviatoric_terms(SymmetricTensor<4, 3>       &t,
+                                          const double                 a,
+                                          const double                 b,
+                                          const SymmetricTensor<2, 3> &n)
+  {
+    const unsigned int ij[6][2] = {
+      {0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+    for (unsigned int c = 0; c < 6; ++c)
+      for (unsigned int d = 0; d < 6; ++d)
+        {
+          // I_d: delta_cd - 1/3 between normal components, delta_cd / 2
+          // between shear components (1/2 (d_ik d_jl + d_il d_jk) - d_ij
+          // d_kl / 3).
+          const double deviatoric = c < 3 && d < 3 ?
+                                      (c == d ? 2. / 3. : -1. / 3.) :
+                                    c == d ? 0.5 :
+                                             0.;
+          t[ij[c][0]][ij[c][1]][ij[d][0]][ij[d][1]] +=
+            a * deviatoric + b * n[ij[c][0]][ij[c][1]] * n[ij[d][0]][ij[d][1]];
+        }
+  }
+
+
+
+  double
+  ConstitutiveModel::yield_function(const SymmetricTensor<2, 3> &,
+                                    const double) const
+  {
+    return -std::numeric_limits<double>::infinity();
+  }
+
+
+
+  SymmetricTensor<4, 3>
+  ConstitutiveModel::elastic_tangent() const
+  {
+    return isotropic_stiffness();
+  }
+
+
+
+  bool
+  ConstitutiveModel::is_linear() const
+  {
+    return false;
+  }
+
+
+
+  SymmetricTensor<2, 3>
+  ConstitutiveModel::elastic_stress(
+    const SymmetricTensor<2, 3> &elastic_strain) const
+  {
+    return kappa * trace(elastic_strain) * unit_symmetric_tensor<3>() +
+           2. * mu * deviator(elastic_strain);
+  }
+
+
+
+  LinearElasticModel::LinearElasticModel(const double youngs_modulus,
+                                         const double poissons_ratio,
+                                         const bool   plane_stress)
+    : ConstitutiveModel(youngs_modulus, poissons_ratio)
+    , plane_stress(plane_stress)
+  {
+    stiffness = isotropic_stiffness();
+    if (plane_stress)
+      {
+        // The map P(eps) that replaces eps_zz by -r (eps_xx + eps_yy) has the
+        // derivative I - E_zz (x) E_zz - r E_zz (x) (E_xx + E_yy); the
+        // tangent is D^e : dP/deps (doc/materials.md, Sec. 2).
+        const double          lambda = kappa - 2. * mu / 3.;
+        const double          r      = lambda / (lambda + 2. * mu);
+        SymmetricTensor<2, 3> e_zz, e_in;
+        e_zz[2][2] = 1.;
+        e_in[0][0] = e_in[1][1]                = 1.;
+        const SymmetricTensor<4, 3> projection = identity_tensor<3>() -
+                                                 outer_product(e_zz, e_zz) -
+                                                 r * outer_product(e_zz, e_in);
+        stiffness = stiffness * projection;
+      }
+  }
+
+
+
+  ConstitutiveResponse
+  LinearElasticModel::update(ConstitutiveState &state) const
+  {
+    if (plane_stress)
+      {
+        const double lambda = kappa - 2. * mu / 3.;
+        state.elastic_strain[2][2] =
+          -lambda / (lambda + 2. * mu) *
+          (state.elastic_strain[0][0] + state.elastic_strain[1][1]);
+      }
+    ConstitutiveResponse response;
+    response.stress  = elastic_stress(state.elastic_strain);
+    response.tangent = stiffness;
+    return response;
+  }
+
+
+
+  SymmetricTensor<4, 3>
+  LinearElasticModel::elastic_tangent() const
+  {
+    return stiffness;
+  }
+
+
+
+  bool
+  LinearElasticModel::is_linear() const
+  {
+    return true;
+  }
+
+
+
+  std::string
+  LinearElasticModel::name() const
+  {
+    return "linear elastic";
+  }
+
+
+
+  SpectralDecomposition::SpectralDecomposition(const SymmetricTensor<2, 3> &x)
+  {
+    auto pairs = eigenvectors(x, SymmetricTensorEigenvectorMethod::jacobi);
+    std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
+      return a.first > b.first;
+    });
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        values[a]  = pairs[a].first;
+        vectors[a] = pairs[a].second;
+      }
+  }
+
+
+
+  SymmetricTensor<2, 3>
+  SpectralDecomposition::assemble(const std::array<double, 3> &y) const
+  {
+    SymmetricTensor<2, 3> result;
+    for (unsigned int a = 0; a < 3; ++a)
+      result += y[a] * symmetrize(outer_product(vectors[a], vectors[a]));
+    return result;
+  }
+
+
+
+  SymmetricTensor<4, 3>
+  SpectralDecomposition::assemble_tangent(
+    const Tensor<2, 3>          &dy_dx,
+    const std::array<double, 3> &rho) const
+  {
+    // Components of M_A = n_A n_A and W_AB = (n_A n_B + n_B n_A) / sqrt(2)
+    // for the six index pairs; the entries are written directly (deal.II's
+    // outer_product of symmetric tensors costs ~ 0.4 us each).
+    const unsigned int ij[6][2] = {
+      {0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+    const unsigned int pair[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    double             m[3][6], dm[3][6], w[3][6];
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int c = 0; c < 6; ++c)
+        m[a][c] = vectors[a][ij[c][0]] * vectors[a][ij[c][1]];
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        const Tensor<1, 3> &n_a = vectors[pair[k][0]];
+        const Tensor<1, 3> &n_b = vectors[pair[k][1]];
+        for (unsigned int c = 0; c < 6; ++c)
+          w[k][c] =
+            (n_a[ij[c][0]] * n_b[ij[c][1]] + n_b[ij[c][0]] * n_a[ij[c][1]]) /
+            std::sqrt(2.);
+      }
+    // sum_AB D_AB M_A (x) M_B = sum_A M_A (x) (sum_B D_AB M_B)
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int c = 0; c < 6; ++c)
+        dm[a][c] =
+          dy_dx[a][0] * m[0][c] + dy_dx[a][1] * m[1][c] + dy_dx[a][2] * m[2][c];
+    SymmetricTensor<4, 3> result;
+    for (unsigned int c = 0; c < 6; ++c)
+      for (unsigned int d = 0; d < 6; ++d)
+        {
+          double value = 0;
+          for (unsigned int a = 0; a < 3; ++a)
+            value += m[a][c] * dm[a][d] + rho[a] * w[a][c] * w[a][d];
+          result[ij[c][0]][ij[c][1]][ij[d][0]][ij[d][1]] = value;
+        }
+    return result;
+  }
+
+
+
+  double
+  SpectralDecomposition::spin_modulus(const double x_a,
+                                      const double x_b,
+                                      const double y_a,
+                                      const double y_b,
+                                      const double limit_a,
+                                      const double limit_b)
+  {
+    // Round-off of the quotient ~ eps / gap, error of the limit ~ gap^2:
+    // they balance at gap ~ eps^(1/3) (relative).
+    static const double tolerance =
+      std::cbrt(std::numeric_limits<double>::epsilon());
+    const double gap = x_a - x_b;
+    if (std::abs(gap) > tolerance * std::max(std::abs(x_a), std::abs(x_b)))
+      return (y_a - y_b) / gap;
+    return 0.5 * (limit_a + limit_b);
+  }
+
+
+
+  std::pair<SymmetricTensor<2, 3>, SymmetricTensor<4, 3>>
+  isotropic_tensor_function(const SymmetricTensor<2, 3>         &x,
+                            const std::function<double(double)> &f,
+                            const std::function<double(double)> &df)
+  {
+    const SpectralDecomposition spectral(x);
+    std::array<double, 3>       y, dy;
+    Tensor<2, 3>                dy_dx;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        y[a]        = f(spectral.values[a]);
+        dy[a]       = df(spectral.values[a]);
+        dy_dx[a][a] = dy[a];
+      }
+    const unsigned int    pair[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    std::array<double, 3> rho;
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        const unsigned int a = pair[k][0], b = pair[k][1];
+        rho[k] = SpectralDecomposition::spin_modulus(
+          spectral.values[a], spectral.values[b], y[a], y[b], dy[a], dy[b]);
+      }
+    return {spectral.assemble(y), spectral.assemble_tangent(dy_dx, rho)};
+  }
+
+
+
+  void
+  declare_constitutive_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    prm.declare_entry(
+      "Constitutive model",
+      "linear elastic",
+      Patterns::Selection("linear elastic|von Mises|Drucker-Prager"),
+      "Stress-strain law of the body (doc/materials.md): 'linear elastic' "
+      "(Young's modulus and Poisson's ratio), 'von Mises' (plasticity with "
+      "linear hardening, subsection 'von Mises') or 'Drucker-Prager' (a "
+      "frictional cone, subsection 'Drucker-Prager'). The plastic models "
+      "need 'Model = plane strain'.");
+    VonMisesPlasticity::declare_parameters(prm);
+    DruckerPragerPlasticity::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  check_constitutive_model_compatibility(const std::string &name,
+                                         const bool         plane_stress)
+  {
+    AssertThrow(!plane_stress || name == "linear elastic",
+                ExcMessage("Material: the constitutive model '" + name +
+                           "' needs 'Model = plane strain'; plasticity in "
+                           "plane stress is not implemented (the return map "
+                           "would have to keep sigma_zz = 0)."));
+  }
+
+
+
+  std::unique_ptr<ConstitutiveModel>
+  create_constitutive_model(ParameterHandler &prm)
+  {
+    LinearElasticMaterial elastic;
+    elastic.parse_parameters(prm);
+    const bool plane_stress =
+      elastic.model() == LinearElasticMaterial::Model::plane_stress;
+
+    prm.enter_subsection("Material");
+    const std::string                  name = prm.get("Constitutive model");
+    std::unique_ptr<ConstitutiveModel> model;
+    try
+      {
+        check_constitutive_model_compatibility(name, plane_stress);
+        if (name == "von Mises")
+          model = VonMisesPlasticity::create(prm,
+                                             elastic.youngs_modulus(),
+                                             elastic.poissons_ratio());
+        else if (name == "Drucker-Prager")
+          model = DruckerPragerPlasticity::create(prm,
+                                                  elastic.youngs_modulus(),
+                                                  elastic.poissons_ratio());
+        else
+          model = std::make_unique<LinearElasticModel>(elastic.youngs_modulus(),
+                                                       elastic.poissons_ratio(),
+                                                       plane_stress);
+      }
+    catch (...)
+      {
+        prm.leave_subsection();
+        throw;
+      }
+    prm.leave_subsection();
+    return model;
+  }
+} // namespace bsmpm

@@ -1,0 +1,122 @@
+#include <bsmpm/materials/von_mises_plasticity.h>
+
+#include <cmath>
+
+namespace bsmpm
+{
+  VonMisesPlasticity::VonMisesPlasticity(const double youngs_modulus,
+                                         const double poissons_ratio,
+                                         const double yield_stress,
+                                         const double hardening_modulus)
+    : ConstitutiveModel(youngs_modulus, poissons_ratio)
+    , sigma_y(yield_stress)
+    , H(hardening_modulus)
+  {
+    AssertThrow(std::isfinite(sigma_y) && sigma_y > 0.,
+                ExcMessage("Material: von Mises: the yield stress must be "
+                           "positive, got " +
+                           std::to_string(sigma_y) + "."));
+    AssertThrow(std::isfinite(H) && H >= 0.,
+                ExcMessage("Material: von Mises: the hardening modulus must "
+                           "be non-negative (0: perfectly plastic), got " +
+                           std::to_string(H) + "."));
+  }
+
+
+
+  void
+  VonMisesPlasticity::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("von Mises");
+    prm.declare_entry("Yield stress",
+                      "1e4",
+                      Patterns::Double(0.),
+                      "Uniaxial yield stress sigma_y in Pa (positive). In "
+                      "plane strain the shear strength is sigma_y / sqrt(3): "
+                      "a Tresca soil of undrained strength c_u needs "
+                      "sigma_y = sqrt(3) c_u.");
+    prm.declare_entry("Hardening modulus",
+                      "0",
+                      Patterns::Double(0.),
+                      "Linear isotropic hardening: the yield stress grows by "
+                      "H times the equivalent plastic strain (Pa); 0 is "
+                      "perfectly plastic.");
+    prm.leave_subsection();
+  }
+
+
+
+  std::unique_ptr<VonMisesPlasticity>
+  VonMisesPlasticity::create(ParameterHandler &prm,
+                             const double      youngs_modulus,
+                             const double      poissons_ratio)
+  {
+    prm.enter_subsection("von Mises");
+    const double yield_stress      = prm.get_double("Yield stress");
+    const double hardening_modulus = prm.get_double("Hardening modulus");
+    prm.leave_subsection();
+    return std::make_unique<VonMisesPlasticity>(youngs_modulus,
+                                                poissons_ratio,
+                                                yield_stress,
+                                                hardening_modulus);
+  }
+
+
+
+  ConstitutiveResponse
+  VonMisesPlasticity::update(ConstitutiveState &state) const
+  {
+    const SymmetricTensor<2, 3> &eps_tr = state.elastic_strain;
+    const SymmetricTensor<2, 3>  e_tr   = deviator(eps_tr);
+    const double                 norm_e = e_tr.norm();
+    // q^tr = sqrt(3/2) |2 mu e| = sqrt(6) mu |e|
+    const double q_tr = std::sqrt(6.) * mu * norm_e;
+    const double f_tr = q_tr - (sigma_y + H * state.equivalent_plastic_strain);
+
+    ConstitutiveResponse response;
+    if (!(f_tr > 0.))
+      {
+        response.stress  = elastic_stress(eps_tr);
+        response.tangent = isotropic_stiffness();
+        return response;
+      }
+
+    // Radial return (doc/materials.md, Sec. 3).
+    const double                dgamma = f_tr / (3. * mu + H);
+    const SymmetricTensor<2, 3> n      = e_tr / norm_e;
+    // eps_e = eps_tr - dgamma 3/2 s_tr / q_tr = eps_tr - dgamma sqrt(3/2) n
+    state.elastic_strain -= dgamma * std::sqrt(1.5) * n;
+    state.equivalent_plastic_strain += dgamma;
+
+    response.yielded = true;
+    response.stress  = elastic_stress(state.elastic_strain);
+    // D = K 1 (x) 1 + 2 mu beta I_d + 6 mu^2 (dgamma / q_tr - 1 / (3 mu +
+    // H)) n (x) n, beta = 1 - 3 mu dgamma / q_tr: the elastic stiffness plus
+    // its change.
+    const double beta = 1. - 3. * mu * dgamma / q_tr;
+    response.tangent  = isotropic_stiffness();
+    add_deviatoric_terms(response.tangent,
+                         2. * mu * (beta - 1.),
+                         6. * mu * mu * (dgamma / q_tr - 1. / (3. * mu + H)),
+                         n);
+    return response;
+  }
+
+
+
+  double
+  VonMisesPlasticity::yield_function(const SymmetricTensor<2, 3> &stress,
+                                     const double eq_plastic_strain) const
+  {
+    return std::sqrt(1.5) * deviator(stress).norm() -
+           (sigma_y + H * eq_plastic_strain);
+  }
+
+
+
+  std::string
+  VonMisesPlasticity::name() const
+  {
+    return "von Mises";
+  }
+} // namespace bsmpm

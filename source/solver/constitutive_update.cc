@@ -1,0 +1,652 @@
+#include <deal.II/base/mpi.h>
+
+#include <bsmpm/solver/constitutive_update.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bsmpm
+{
+  namespace
+  {
+    using Property = MaterialPoints::Property;
+
+    /** The points of a cell as ConstitutiveUpdate::cell_system() takes
+     * them. */
+    void
+    gather_points(
+      const Particles::ParticleHandler<2>::particle_iterator_range &range,
+      std::vector<ConstitutiveUpdate::PointView>                   &views)
+    {
+      views.clear();
+      for (const auto &particle : range)
+        views.push_back(
+          {particle.get_reference_location(), particle.get_properties()});
+    }
+
+    /** The elastic strain stored in a point (zz included). */
+    SymmetricTensor<2, 3>
+    stored_elastic_strain(const ArrayView<const double> &props)
+    {
+      SymmetricTensor<2, 3> e;
+      e[0][0] = props[Property::elastic_strain];
+      e[1][1] = props[Property::elastic_strain + 1];
+      e[2][2] = props[Property::elastic_strain + 2];
+      e[0][1] = props[Property::elastic_strain + 3];
+      return e;
+    }
+
+    /** The deformation gradient stored in a point. */
+    Tensor<2, 2>
+    stored_deformation_gradient(const ArrayView<const double> &props)
+    {
+      const double *F = &props[Property::deformation_gradient];
+      return Tensor<2, 2>({{F[0], F[1]}, {F[2], F[3]}});
+    }
+
+    /**
+     * An isotropic function y = f(X) of a symmetric 2x2 tensor (the
+     * in-plane block of a plane-strain tensor, whose zz direction is
+     * principal) by its closed-form eigenvalues, and its derivative. Both on
+     * the components (xx, yy, xy); the derivative as the matrix M with
+     * dy = M dX, M[r][c] = T_rc w_c, w = (1, 1, 2) (dX_xy stands for
+     * dX_xy and dX_yx). With the eigenprojections E_1, E_2:
+     *
+     *   T = f'(x_1) E_1 (x) E_1 + f'(x_2) E_2 (x) E_2
+     *       + rho (I - E_1 (x) E_1 - E_2 (x) E_2),
+     *   rho = (f(x_1) - f(x_2)) / (x_1 - x_2)
+     *
+     * (SpectralDecomposition::spin_modulus near equal eigenvalues). The
+     * plane-strain kinematics need only these, at a fraction of the cost of
+     * the three-dimensional decomposition.
+     */
+    template <typename F, typename DF>
+    void
+    in_plane_function(const Tensor<1, 3> &X,
+                      const F            &f,
+                      const DF           &df,
+                      Tensor<1, 3>       &y,
+                      Tensor<2, 3>       *derivative)
+    {
+      const double m  = (X[0] + X[1]) / 2;
+      const double d  = (X[0] - X[1]) / 2;
+      const double r  = std::sqrt(d * d + X[2] * X[2]);
+      const double x1 = m + r, x2 = m - r;
+      // E_1 = (X - x_2 1) / (x_1 - x_2); for r = 0 any split will do.
+      Tensor<1, 3> E1, E2;
+      if (r > 0)
+        E1 =
+          Tensor<1, 3>({(d + r) / (2 * r), (r - d) / (2 * r), X[2] / (2 * r)});
+      else
+        E1 = Tensor<1, 3>({1., 0., 0.});
+      E2              = Tensor<1, 3>({1. - E1[0], 1. - E1[1], -E1[2]});
+      const double y1 = f(x1), y2 = f(x2);
+      y = y1 * E1 + y2 * E2;
+      if (derivative == nullptr)
+        return;
+      const double a1 = df(x1), a2 = df(x2);
+      const double rho =
+        SpectralDecomposition::spin_modulus(x1, x2, y1, y2, a1, a2);
+      static constexpr double w[3]        = {1., 1., 2.};
+      static constexpr double identity[3] = {1., 1., 0.5};
+      for (unsigned int r = 0; r < 3; ++r)
+        for (unsigned int c = 0; c < 3; ++c)
+          (*derivative)[r][c] =
+            ((a1 - rho) * E1[r] * E1[c] + (a2 - rho) * E2[r] * E2[c] +
+             (r == c ? rho * identity[r] : 0.)) *
+            w[c];
+    }
+
+    /** The in-plane block of a symmetric 3x3 tensor as (xx, yy, xy). */
+    Tensor<1, 3>
+    in_plane(const SymmetricTensor<2, 3> &t)
+    {
+      return Tensor<1, 3>({t[0][0], t[1][1], t[0][1]});
+    }
+
+    /** (xx, yy, xy) as a 2x2 tensor. */
+    Tensor<2, 2>
+    as_tensor(const Tensor<1, 3> &v)
+    {
+      return Tensor<2, 2>({{v[0], v[2]}, {v[2], v[1]}});
+    }
+
+    /** The symmetric 2x2 tensor a b a^T as (xx, yy, xy). */
+    Tensor<1, 3>
+    push_forward(const Tensor<2, 2> &a, const Tensor<1, 3> &b)
+    {
+      const Tensor<2, 2> t = a * as_tensor(b) * transpose(a);
+      return Tensor<1, 3>({t[0][0], t[1][1], (t[0][1] + t[1][0]) / 2});
+    }
+
+    const auto log_of     = [](const double x) { return std::log(x); };
+    const auto inverse_of = [](const double x) { return 1. / x; };
+    const auto exp_of     = [](const double x) { return std::exp(x); };
+  } // namespace
+
+
+
+  ConstitutiveUpdate::ConstitutiveUpdate(const ConstitutiveModel &model,
+                                         const bool               b_bar,
+                                         const Kinematics         kinematics)
+    : model(model)
+    , b_bar(b_bar)
+    , point_kinematics(kinematics)
+  {}
+
+
+
+  Tensor<2, 4>
+  ConstitutiveUpdate::voigt_tangent(const SymmetricTensor<4, 3> &tangent)
+  {
+    // sigma_ij = T_ijkl eps_kl; the engineering shear gamma = 2 eps_xy
+    // takes both T_ij01 and T_ij10 = T_ij01.
+    static constexpr unsigned int index[4][2] = {{0, 0},
+                                                 {1, 1},
+                                                 {2, 2},
+                                                 {0, 1}};
+    Tensor<2, 4>                  D;
+    for (unsigned int r = 0; r < 4; ++r)
+      for (unsigned int c = 0; c < 4; ++c)
+        D[r][c] = tangent[index[r][0]][index[r][1]][index[c][0]][index[c][1]];
+    return D;
+  }
+
+
+
+  ConstitutiveUpdate::CellStrain
+  ConstitutiveUpdate::cell_strain(const Q1CellKernel              &kernel,
+                                  const std::vector<PointView>    &cell_points,
+                                  const Q1CellKernel::LocalVector &d) const
+  {
+    CellStrain strain;
+    strain.coefficients = kernel.strain_coefficients(d);
+    strain.use_b_bar    = false;
+    if (!b_bar)
+      return strain;
+    // The volumetric strain of Q1 is affine in the cell, so its mean over
+    // the points is its value at their volume-weighted centroid.
+    double v = 0, vs = 0, vt = 0;
+    for (const auto &point : cell_points)
+      {
+        const double volume = point.props[Property::volume];
+        v += volume;
+        vs += volume * point.st[0];
+        vt += volume * point.st[1];
+      }
+    if (v == 0.)
+      return strain;
+    strain.use_b_bar = true;
+    strain.centroid  = Point<2>(vs / v, vt / v);
+    if (point_kinematics == Kinematics::finite_strain)
+      {
+        // F-bar: the same idea for ln det f, which is not affine; its value
+        // at the centroid stands for the cell.
+        const Tensor<2, 2> f =
+          unit_symmetric_tensor<2>() + kernel.gradient(d, strain.centroid);
+        strain.log_det_centroid    = std::log(determinant(f));
+        const Tensor<2, 2> f_inv_T = transpose(invert(f));
+        for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+          strain.centroid_gradients[i] =
+            f_inv_T * kernel.scalar_gradient(i, strain.centroid);
+      }
+    return strain;
+  }
+
+
+
+  void
+  ConstitutiveUpdate::strain_columns(const Q1CellKernel          &kernel,
+                                     const CellStrain            &strain,
+                                     const Point<2>              &st,
+                                     std::array<Voigt, 8>        &B,
+                                     std::array<Tensor<1, 4>, 8> &B_bar)
+  {
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      {
+        B[i] = kernel.strain_column(i, st);
+        // B-bar: the point's volumetric strain replaced by the cell's mean,
+        // eps_bar = eps + (theta_mean - theta) / 3 * 1 (zz included).
+        double shift = 0;
+        if (strain.use_b_bar)
+          {
+            const Voigt mean = kernel.strain_column(i, strain.centroid);
+            shift            = (mean[0] + mean[1] - B[i][0] - B[i][1]) / 3;
+          }
+        B_bar[i] =
+          Tensor<1, 4>({B[i][0] + shift, B[i][1] + shift, shift, B[i][2]});
+      }
+  }
+
+
+
+  Tensor<1, 4>
+  ConstitutiveUpdate::strain_increment(const Q1CellKernel              &kernel,
+                                       const CellStrain                &strain,
+                                       const Point<2>                  &st,
+                                       const Q1CellKernel::LocalVector &d,
+                                       std::array<Voigt, 8>            &B,
+                                       std::array<Tensor<1, 4>, 8>     &B_bar)
+  {
+    strain_columns(kernel, strain, st, B, B_bar);
+    Tensor<1, 4> de;
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      de += d[i] * B_bar[i];
+    return de;
+  }
+
+
+
+  ConstitutiveResponse
+  ConstitutiveUpdate::respond(const ArrayView<const double> &props,
+                              const Tensor<1, 4>            &de,
+                              ConstitutiveState             &state) const
+  {
+    SymmetricTensor<2, 3> &e = state.elastic_strain;
+    e[0][0]                  = props[Property::elastic_strain] + de[0];
+    e[1][1]                  = props[Property::elastic_strain + 1] + de[1];
+    e[2][2]                  = props[Property::elastic_strain + 2] + de[2];
+    e[0][1]                  = props[Property::elastic_strain + 3] + de[3] / 2;
+    e[0][2] = e[1][2]               = 0;
+    state.equivalent_plastic_strain = props[Property::plastic_strain];
+    return model.update(state);
+  }
+
+
+
+  ConstitutiveUpdate::FiniteStrainPoint
+  ConstitutiveUpdate::finite_strain_trial(const Q1CellKernel            &kernel,
+                                          const CellStrain              &strain,
+                                          const Point<2>                &st,
+                                          const ArrayView<const double> &props,
+                                          const Q1CellKernel::LocalVector &d,
+                                          const Tensor<2, 2> *gradient,
+                                          ConstitutiveState  &state) const
+  {
+    FiniteStrainPoint point;
+    point.f = unit_symmetric_tensor<2>() +
+              (gradient ? *gradient : kernel.gradient(d, st));
+    point.det_f = determinant(point.f);
+    if (!(point.det_f > 0))
+      return point; // the caller reports an inverted point
+    const Tensor<2, 2> f_inv_T = transpose(invert(point.f));
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      point.gradients[i] = f_inv_T * kernel.scalar_gradient(i, st);
+
+    // b_e,n = exp(2 eps_e,n); b_e^tr = f b_e,n f^T. With f_zz = 1 the zz
+    // elastic strain is unchanged and zz stays a principal direction, so
+    // the in-plane block is all that the exponential and logarithm see.
+    const SymmetricTensor<2, 3> eps_n = stored_elastic_strain(props);
+    Tensor<1, 3>                b_n, log_b;
+    in_plane_function(2 * in_plane(eps_n), exp_of, exp_of, b_n, nullptr);
+    const Tensor<1, 3> b_trial = push_forward(point.f, b_n);
+    in_plane_function(
+      b_trial, log_of, inverse_of, log_b, &point.log_derivative);
+    point.trial_b = as_tensor(b_trial);
+
+    SymmetricTensor<2, 3> &e = state.elastic_strain;
+    e                        = SymmetricTensor<2, 3>();
+    e[0][0]                  = log_b[0] / 2;
+    e[1][1]                  = log_b[1] / 2;
+    e[0][1]                  = log_b[2] / 2;
+    e[2][2]                  = eps_n[2][2];
+    // F-bar: f scaled by (det f_c / det f)^(1/3) (zz included), so that
+    // ln det f is that of the centroid; in small strain this is B-bar.
+    if (strain.use_b_bar)
+      state.elastic_strain +=
+        (strain.log_det_centroid - std::log(point.det_f)) / 3 *
+        unit_symmetric_tensor<3>();
+    state.equivalent_plastic_strain = props[Property::plastic_strain];
+    return point;
+  }
+
+
+
+  unsigned int
+  ConstitutiveUpdate::cell_system(const Q1CellKernel              &kernel,
+                                  const std::vector<PointView>    &cell_points,
+                                  const Q1CellKernel::LocalVector &d,
+                                  FullMatrix<double>              &K,
+                                  Vector<double>                  &f) const
+  {
+    constexpr unsigned int      n      = Q1CellKernel::dofs_per_cell;
+    const CellStrain            strain = cell_strain(kernel, cell_points, d);
+    std::array<Voigt, n>        B;
+    std::array<Tensor<1, 4>, n> B_bar, DB_bar;
+    std::array<Tensor<1, 2>, n> tau_g;
+    ConstitutiveState           state;
+    unsigned int                n_yielded = 0;
+    K                                     = 0;
+    f                                     = 0;
+    for (const auto &point : cell_points)
+      {
+        const auto  &props = point.props;
+        const double w     = quadrature_weights ? props[Property::weight] :
+                                                  props[Property::volume];
+        if (props[Property::volume] == 0. || w == 0.)
+          continue;
+
+        if (point_kinematics == Kinematics::small_strain)
+          {
+            const Tensor<1, 4> de =
+              strain_increment(kernel, strain, point.st, d, B, B_bar);
+            const auto response = respond(props, de, state);
+            n_yielded += response.yielded;
+            const Tensor<1, 4> sigma({response.stress[0][0],
+                                      response.stress[1][1],
+                                      response.stress[2][2],
+                                      response.stress[0][1]});
+            const Tensor<2, 4> D = voigt_tangent(response.tangent);
+            for (unsigned int i = 0; i < n; ++i)
+              DB_bar[i] = D * B_bar[i];
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                f[i] += w * (B_bar[i] * sigma);
+                for (unsigned int j = 0; j < n; ++j)
+                  K(i, j) += w * (B_bar[i] * DB_bar[j]);
+              }
+            continue;
+          }
+
+        // Finite strain (doc/finite-strain.md).
+        const FiniteStrainPoint kin = finite_strain_trial(
+          kernel, strain, point.st, props, d, nullptr, state);
+        if (!(kin.det_f > 0))
+          {
+            // An inverted point: no finite residual, so Newton cuts the step.
+            f = std::numeric_limits<double>::quiet_NaN();
+            return n_yielded;
+          }
+        const auto response = model.update(state);
+        n_yielded += response.yielded;
+        const SymmetricTensor<2, 3> &tau = response.stress;
+        const double                 c   = w / props[Property::det_F];
+        // d tau / d eps^tr on in-plane strains (rows and columns xx, yy,
+        // xy, the xy column counted twice) and D : 1.
+        static constexpr unsigned int index[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+        Tensor<2, 3>                  D;
+        Tensor<1, 3>                  D1;
+        for (unsigned int r = 0; r < 3; ++r)
+          {
+            const unsigned int i = index[r][0], j = index[r][1];
+            for (unsigned int c = 0; c < 3; ++c)
+              D[r][c] = response.tangent[i][j][index[c][0]][index[c][1]] *
+                        (c == 2 ? 2. : 1.);
+            D1[r] = response.tangent[i][j][0][0] +
+                    response.tangent[i][j][1][1] + response.tangent[i][j][2][2];
+          }
+        const Tensor<2, 3> DL = D * kin.log_derivative;
+        const auto         N  = Q1CellKernel::vertex_shape_values(point.st);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int r = 0; r < 2; ++r)
+            tau_g[i][r] =
+              tau[r][0] * kin.gradients[i][0] + tau[r][1] * kin.gradients[i][1];
+        for (unsigned int a = 0; a < n; ++a)
+          f[a] += c * (tau_g[a][kernel.component(a)] -
+                       body_force[kernel.component(a)] * N[kernel.vertex(a)]);
+        for (unsigned int b = 0; b < n; ++b)
+          {
+            // The unit increment of DoF b (component k) gives
+            // delta b^tr = 2 sym(e_k (x) h), h = b^tr g_b, and
+            // delta eps^tr = L : sym(e_k (x) h) (+ F-bar's volumetric part).
+            const unsigned int k = kernel.component(b);
+            const Tensor<1, 2> h = kin.trial_b * kin.gradients[b];
+            // sym(e_k (x) h) as (xx, yy, xy).
+            const Tensor<1, 3> S = k == 0 ? Tensor<1, 3>({h[0], 0., h[1] / 2}) :
+                                            Tensor<1, 3>({0., h[1], h[0] / 2});
+            Tensor<1, 3>       dtau = DL * S;
+            if (strain.use_b_bar)
+              dtau += (strain.centroid_gradients[b][k] - kin.gradients[b][k]) /
+                      3 * D1;
+            // Rows (xx, xy) and (xy, yy) of delta tau.
+            const Tensor<1, 2> row[2] = {Tensor<1, 2>({dtau[0], dtau[2]}),
+                                         Tensor<1, 2>({dtau[2], dtau[1]})};
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                const unsigned int  i = kernel.component(a);
+                const Tensor<1, 2> &g = kin.gradients[a];
+                K(a, b) += c * (row[i] * g - tau_g[b][i] * g[k]);
+              }
+          }
+      }
+    return n_yielded;
+  }
+
+
+
+  unsigned long long
+  ConstitutiveUpdate::assemble(
+    const MaterialPoints                             &points,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   &tangent,
+    TrilinosWrappers::MPI::Vector                    &internal_force) const
+  {
+    constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
+    const auto                          &particles = points.particle_handler();
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_vector(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    Q1CellKernel::LocalVector            d;
+    std::vector<PointView>               views;
+    unsigned long long                   n_yielded = 0;
+
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() ||
+            particles.n_particles_in_cell(cell) == 0 ||
+            !points.holds_material(cell))
+          continue;
+        d = MaterialPoints::cell_increment(cell,
+                                           increment,
+                                           prescribed,
+                                           dof_indices);
+        gather_points(particles.particles_in_cell(cell), views);
+        n_yielded += cell_system(kernel, views, d, cell_matrix, cell_vector);
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+      }
+    return n_yielded;
+  }
+
+
+
+  unsigned long long
+  ConstitutiveUpdate::commit(
+    MaterialPoints                                   &points,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  {
+    constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
+    auto                                &particles = points.particle_handler();
+    std::vector<types::global_dof_index> dof_indices(n);
+    Q1CellKernel::LocalVector            d;
+    std::array<Voigt, n>                 B;
+    std::array<Tensor<1, 4>, n>          B_bar;
+    std::vector<PointView>               views;
+    ConstitutiveState                    state;
+    unsigned long long                   n_yielded = 0;
+    points.find_material_cells();
+    const bool finite = point_kinematics == Kinematics::finite_strain;
+    // The 2x2 blocks of the vertices in the points' tangent with their
+    // algorithmic (a) and elastic (e) tangents: K_xx, K_yy on the vertex's
+    // two DoFs, K_xy on its first (support_stiffness_ratios()).
+    const MPI_Comm                             comm = grid.mpi_communicator();
+    LinearAlgebra::distributed::Vector<double> diagonal_a(
+      grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    LinearAlgebra::distributed::Vector<double> diagonal_e(diagonal_a),
+      off_a(diagonal_a), off_e(diagonal_a);
+    const Tensor<2, 4>          D_e = voigt_tangent(model.elastic_tangent());
+    std::array<Voigt, n>        B_block;
+    std::array<Tensor<1, 4>, n> B_bar_block;
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() ||
+            particles.n_particles_in_cell(cell) == 0)
+          continue;
+        d                      = MaterialPoints::cell_increment(cell,
+                                           increment,
+                                           prescribed,
+                                           dof_indices);
+        const auto cell_points = particles.particles_in_cell(cell);
+        gather_points(cell_points, views);
+        const bool has_material = points.holds_material(cell);
+        CellStrain strain;
+        if (has_material)
+          strain = cell_strain(kernel, views, d);
+        for (auto &particle : cell_points)
+          {
+            const Point<2> st    = particle.get_reference_location();
+            auto           props = particle.get_properties();
+            // Tracking points on the face of a cell without material take
+            // the field of the neighbour that holds material.
+            const Tensor<2, 2> grad =
+              has_material ? kernel.gradient(d, st) :
+                             points.boundary_gradient(
+                               kernel, cell, st, increment, prescribed);
+            const Tensor<2, 2>   F_n = stored_deformation_gradient(props);
+            ConstitutiveResponse response;
+            double               det_f = 1;
+            if (finite)
+              {
+                const FiniteStrainPoint kin = finite_strain_trial(
+                  kernel, strain, st, props, d, &grad, state);
+                det_f    = kin.det_f;
+                response = model.update(state);
+              }
+            else
+              {
+                Tensor<1, 4> de;
+                if (has_material)
+                  de = strain_increment(kernel, strain, st, d, B, B_bar);
+                else
+                  {
+                    const Voigt e = points.boundary_strain(
+                      kernel, cell, st, increment, prescribed);
+                    de = Tensor<1, 4>({e[0], e[1], 0., e[2]});
+                  }
+                response = respond(props, de, state);
+              }
+            if (has_material && props[Property::volume] > 0.)
+              {
+                const double w = quadrature_weights ? props[Property::weight] :
+                                                      props[Property::volume];
+                strain_columns(kernel, strain, st, B_block, B_bar_block);
+                const Tensor<2, 4> D = voigt_tangent(response.tangent);
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    const Tensor<1, 4> DB  = D * B_bar_block[i];
+                    const Tensor<1, 4> DeB = D_e * B_bar_block[i];
+                    diagonal_a(dof_indices[i]) += w * (B_bar_block[i] * DB);
+                    diagonal_e(dof_indices[i]) += w * (B_bar_block[i] * DeB);
+                    if (kernel.component(i) == 0)
+                      for (unsigned int j = 0; j < n; ++j)
+                        if (kernel.component(j) == 1 &&
+                            kernel.vertex(j) == kernel.vertex(i))
+                          {
+                            // The symmetric part (unsymmetric tangents).
+                            off_a(dof_indices[i]) +=
+                              w *
+                              (B_bar_block[j] * DB +
+                               B_bar_block[i] * (D * B_bar_block[j])) /
+                              2;
+                            off_e(dof_indices[i]) += w * (B_bar_block[j] * DeB);
+                          }
+                  }
+              }
+            const auto &eps                     = state.elastic_strain;
+            props[Property::elastic_strain]     = eps[0][0];
+            props[Property::elastic_strain + 1] = eps[1][1];
+            props[Property::elastic_strain + 2] = eps[2][2];
+            props[Property::elastic_strain + 3] = eps[0][1];
+            props[Property::plastic_strain] = state.equivalent_plastic_strain;
+            props[Property::yielded]        = response.yielded ? 1. : 0.;
+            n_yielded += response.yielded && props[Property::volume] > 0;
+
+            // The motion of the point: F_n+1 = f F_n.
+            const Tensor<2, 2> F = (unit_symmetric_tensor<2>() + grad) * F_n;
+            const double       J = determinant(F);
+            props[Property::deformation_gradient]     = F[0][0];
+            props[Property::deformation_gradient + 1] = F[0][1];
+            props[Property::deformation_gradient + 2] = F[1][0];
+            props[Property::deformation_gradient + 3] = F[1][1];
+            props[Property::det_F]                    = J;
+
+            // Cauchy stress: the Kirchhoff stress over J in finite strain.
+            const double scale          = finite ? 1. / J : 1.;
+            props[Property::stress]     = scale * response.stress[0][0];
+            props[Property::stress + 1] = scale * response.stress[1][1];
+            props[Property::stress + 2] = scale * response.stress[0][1];
+            props[Property::stress_zz]  = scale * response.stress[2][2];
+            if (finite)
+              {
+                // V = det(f) V_n; the strain is the logarithmic strain
+                // ln(F F^T) / 2 (MaterialPoints::move() leaves it alone).
+                props[Property::volume] *= det_f;
+                Tensor<1, 3> log_strain;
+                in_plane_function(push_forward(F, Tensor<1, 3>({1., 1., 0.})),
+                                  log_of,
+                                  inverse_of,
+                                  log_strain,
+                                  nullptr);
+                props[Property::strain]     = log_strain[0] / 2;
+                props[Property::strain + 1] = log_strain[1] / 2;
+                props[Property::strain + 2] = log_strain[2] / 2;
+              }
+          }
+      }
+    for (auto *v : {&diagonal_a, &diagonal_e, &off_a, &off_e})
+      {
+        v->compress(VectorOperation::add);
+        v->update_ghost_values();
+      }
+    stiffness_ratio.reinit(diagonal_a);
+    const auto smallest_eigenvalue =
+      [](const double a, const double b, const double c) {
+        // Of [[a, c], [c, b]].
+        return (a + b) / 2 - std::sqrt((a - b) * (a - b) / 4 + c * c);
+      };
+    std::vector<types::global_dof_index> vertex_dofs(n);
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        cell->get_dof_indices(vertex_dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          if (kernel.component(i) == 0)
+            for (unsigned int j = 0; j < n; ++j)
+              if (kernel.component(j) == 1 &&
+                  kernel.vertex(j) == kernel.vertex(i))
+                {
+                  const auto   x = vertex_dofs[i], y = vertex_dofs[j];
+                  const double elastic =
+                    smallest_eigenvalue(diagonal_e(x), diagonal_e(y), off_e(x));
+                  const double held =
+                    smallest_eigenvalue(diagonal_a(x), diagonal_a(y), off_a(x));
+                  // Exactly 1 where the sums are the same (every point
+                  // elastic); nothing held: 1 as well (no material). A
+                  // vertex that a prescribed displacement moves (a
+                  // footing's base crosses its cells) is held by it.
+                  const bool supported =
+                    prescribed != nullptr &&
+                    ((*prescribed)(x) != 0. || (*prescribed)(y) != 0.);
+                  const double ratio =
+                    (elastic > 0 && held != elastic && !supported) ?
+                      std::clamp(held / elastic, 0., 1.) :
+                      1.;
+                  if (grid.locally_owned_dofs().is_element(x))
+                    stiffness_ratio(x) = ratio;
+                  if (grid.locally_owned_dofs().is_element(y))
+                    stiffness_ratio(y) = ratio;
+                }
+      }
+    stiffness_ratio.update_ghost_values();
+    return Utilities::MPI::sum(n_yielded, grid.mpi_communicator());
+  }
+} // namespace bsmpm

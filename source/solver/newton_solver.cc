@@ -1,0 +1,162 @@
+#include <bsmpm/solver/newton_solver.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace bsmpm
+{
+  void
+  NewtonSolver::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    prm.declare_entry("Maximum iterations",
+                      "20",
+                      Patterns::Integer(1, 1000),
+                      "Newton iterations per load increment before the "
+                      "increment counts as failed and is cut.");
+    prm.declare_entry("Residual tolerance",
+                      "1e-9",
+                      Patterns::Double(0, 1),
+                      "Converged when the residual has fallen below this "
+                      "fraction of its value at the start of the "
+                      "increment.");
+    prm.declare_entry("Maximum step cuts",
+                      "6",
+                      Patterns::Integer(0, 30),
+                      "How many times a load increment that does not "
+                      "converge may be halved before the run stops.");
+    prm.declare_entry("Line search steps",
+                      "5",
+                      Patterns::Integer(0, 30),
+                      "How many times a Newton correction that does not "
+                      "lower the residual may be halved (0: full steps).");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  NewtonSolver::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    max_iterations = prm.get_integer("Maximum iterations");
+    tolerance      = prm.get_double("Residual tolerance");
+    max_cuts       = prm.get_integer("Maximum step cuts");
+    line_search    = prm.get_integer("Line search steps");
+    prm.leave_subsection();
+  }
+
+
+
+  NewtonSolver::Result
+  NewtonSolver::solve(
+    const double                                            reference,
+    const std::function<double()>                          &residual,
+    const std::function<std::pair<double, unsigned int>()> &correct,
+    const std::function<void(const double)>                &step_back,
+    const std::function<double()>                          &slope,
+    const double                                            initial_norm) const
+  {
+    Result       result;
+    const double initial = reference;
+    // The caller may have assembled the system at the start already.
+    double norm = initial_norm >= 0 ? initial_norm : residual();
+    for (unsigned int k = 0;; ++k)
+      {
+        Iteration iteration;
+        iteration.relative_residual = initial > 0 ? norm / initial : 0.;
+        if (!std::isfinite(norm))
+          {
+            result.iterations.push_back(iteration);
+            result.failure = "the residual is not finite";
+            return result;
+          }
+        // Converged, or nothing to do (no load increment and no stress to
+        // balance).
+        if (norm <= tolerance * initial || initial == 0.)
+          {
+            result.iterations.push_back(iteration);
+            result.converged = true;
+            return result;
+          }
+        if (k == max_iterations)
+          {
+            result.iterations.push_back(iteration);
+            result.failure = "no convergence in " +
+                             std::to_string(max_iterations) + " iterations";
+            return result;
+          }
+        const auto [correction, linear_iterations] = correct();
+        iteration.relative_correction              = correction;
+        iteration.linear_iterations                = linear_iterations;
+        // g(0) = dx . R(x): positive when dx descends the potential (always
+        // for a symmetric positive definite tangent).
+        const double g0       = slope ? slope() : 0.;
+        const double previous = norm;
+        norm                  = residual();
+        if (g0 > 0 && line_search > 0)
+          {
+            // Line search on the potential: g(a) = dx . R(x + a dx) is
+            // minus its derivative along dx, decreasing in a where the
+            // potential is convex. Accept a step where |g| has fallen
+            // to half of g(0) (or the full step while g stays positive:
+            // the potential still falls there); else the zero of g between
+            // the last step with g > 0 and the last with g < 0 by regula
+            // falsi (Illinois), kept a tenth of the bracket from its ends.
+            double a = 1, g = slope();
+            double lo = 0, g_lo = g0, hi = -1, g_hi = 0;
+            int    side = 0;
+            for (unsigned int l = 0; l < line_search; ++l)
+              {
+                if (std::isfinite(norm) && std::isfinite(g) &&
+                    (std::abs(g) <= 0.5 * g0 || (g > 0 && hi < 0)))
+                  break;
+                if (std::isfinite(norm) && std::isfinite(g) && g > 0)
+                  {
+                    lo   = a;
+                    g_lo = g;
+                    if (side == 1)
+                      g_hi /= 2;
+                    side = 1;
+                  }
+                else
+                  {
+                    hi = a;
+                    if (std::isfinite(norm) && std::isfinite(g))
+                      {
+                        g_hi = g;
+                        if (side == -1)
+                          g_lo /= 2;
+                        side = -1;
+                      }
+                    else
+                      {
+                        // Not finite: bisect.
+                        g_hi = -g_lo;
+                        side = 0;
+                      }
+                  }
+                double next = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+                next =
+                  std::clamp(next, lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
+                step_back(a - next);
+                a    = next;
+                norm = residual();
+                g    = slope();
+              }
+            iteration.step_length = a;
+          }
+        else
+          {
+            // Backtracking: halve a correction that does not lower |R|.
+            for (unsigned int l = 0; l < line_search && !(norm < previous); ++l)
+              {
+                iteration.step_length /= 2;
+                step_back(iteration.step_length);
+                norm = residual();
+              }
+          }
+        result.iterations.push_back(iteration);
+      }
+  }
+} // namespace bsmpm
