@@ -1,11 +1,10 @@
 #include <bsmpm/materials/constitutive_model.h>
-#include <bsmpm/materials/drucker_prager_plasticity.h>
 #include <bsmpm/materials/material.h>
-#include <bsmpm/materials/von_mises_plasticity.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace bsmpm
 {
@@ -86,74 +85,6 @@ namespace bsmpm
   {
     return kappa * trace(elastic_strain) * unit_symmetric_tensor<3>() +
            2. * mu * deviator(elastic_strain);
-  }
-
-
-
-  LinearElasticModel::LinearElasticModel(const double youngs_modulus,
-                                         const double poissons_ratio,
-                                         const bool   plane_stress)
-    : ConstitutiveModel(youngs_modulus, poissons_ratio)
-    , plane_stress(plane_stress)
-  {
-    stiffness = isotropic_stiffness();
-    if (plane_stress)
-      {
-        // The map P(eps) that replaces eps_zz by -r (eps_xx + eps_yy) has the
-        // derivative I - E_zz (x) E_zz - r E_zz (x) (E_xx + E_yy); the
-        // tangent is D^e : dP/deps (doc/materials.md, Sec. 2).
-        const double          lambda = kappa - 2. * mu / 3.;
-        const double          r      = lambda / (lambda + 2. * mu);
-        SymmetricTensor<2, 3> e_zz, e_in;
-        e_zz[2][2] = 1.;
-        e_in[0][0] = e_in[1][1]                = 1.;
-        const SymmetricTensor<4, 3> projection = identity_tensor<3>() -
-                                                 outer_product(e_zz, e_zz) -
-                                                 r * outer_product(e_zz, e_in);
-        stiffness = stiffness * projection;
-      }
-  }
-
-
-
-  ConstitutiveResponse
-  LinearElasticModel::update(ConstitutiveState &state) const
-  {
-    if (plane_stress)
-      {
-        const double lambda = kappa - 2. * mu / 3.;
-        state.elastic_strain[2][2] =
-          -lambda / (lambda + 2. * mu) *
-          (state.elastic_strain[0][0] + state.elastic_strain[1][1]);
-      }
-    ConstitutiveResponse response;
-    response.stress  = elastic_stress(state.elastic_strain);
-    response.tangent = stiffness;
-    return response;
-  }
-
-
-
-  SymmetricTensor<4, 3>
-  LinearElasticModel::elastic_tangent() const
-  {
-    return stiffness;
-  }
-
-
-
-  bool
-  LinearElasticModel::is_linear() const
-  {
-    return true;
-  }
-
-
-
-  std::string
-  LinearElasticModel::name() const
-  {
-    return "linear elastic";
   }
 
 
@@ -274,21 +205,78 @@ namespace bsmpm
 
 
 
+  namespace
+  {
+    /** The registered models by name. A function-local static: the
+     * registrations run during static initialisation, in an order that
+     * the language leaves open. */
+    std::map<std::string, ConstitutiveModelEntry> &
+    registry()
+    {
+      static std::map<std::string, ConstitutiveModelEntry> models;
+      return models;
+    }
+
+    const ConstitutiveModelEntry &
+    registered_model(const std::string &name)
+    {
+      const auto model = registry().find(name);
+      AssertThrow(model != registry().end(),
+                  ExcMessage("Material: no constitutive model is called '" +
+                             name + "'."));
+      return model->second;
+    }
+  } // namespace
+
+
+
+  bool
+  register_constitutive_model(const std::string            &name,
+                              const ConstitutiveModelEntry &entry)
+  {
+    Assert(registry().count(name) == 0,
+           ExcMessage("Two constitutive models are called '" + name + "'."));
+    registry()[name] = entry;
+    return true;
+  }
+
+
+
+  std::vector<std::string>
+  constitutive_model_names()
+  {
+    std::vector<std::string> names;
+    for (const auto &[name, entry] : registry())
+      names.push_back(name);
+    return names;
+  }
+
+
+
   void
   declare_constitutive_parameters(ParameterHandler &prm)
   {
+    std::string selection, documentation;
+    const auto  names = constitutive_model_names();
+    for (unsigned int i = 0; i < names.size(); ++i)
+      {
+        const auto &entry = registry().at(names[i]);
+        selection += (i == 0 ? "" : "|") + names[i];
+        documentation += std::string(i == 0               ? "" :
+                                     i + 1 < names.size() ? ", " :
+                                                            " or ") +
+                         "'" + names[i] + "' (" + entry.description +
+                         (entry.plane_stress ? "" : "; plane strain only") +
+                         ")";
+      }
     prm.enter_subsection("Material");
-    prm.declare_entry(
-      "Constitutive model",
-      "linear elastic",
-      Patterns::Selection("linear elastic|von Mises|Drucker-Prager"),
-      "Stress-strain law of the body (doc/materials.md): 'linear elastic' "
-      "(Young's modulus and Poisson's ratio), 'von Mises' (plasticity with "
-      "linear hardening, subsection 'von Mises') or 'Drucker-Prager' (a "
-      "frictional cone, subsection 'Drucker-Prager'). The plastic models "
-      "need 'Model = plane strain'.");
-    VonMisesPlasticity::declare_parameters(prm);
-    DruckerPragerPlasticity::declare_parameters(prm);
+    prm.declare_entry("Constitutive model",
+                      "linear elastic",
+                      Patterns::Selection(selection),
+                      "Stress-strain law of the body (doc/materials.md): " +
+                        documentation + ".");
+    for (const auto &name : names)
+      registry().at(name).declare_parameters(prm);
     prm.leave_subsection();
   }
 
@@ -298,7 +286,7 @@ namespace bsmpm
   check_constitutive_model_compatibility(const std::string &name,
                                          const bool         plane_stress)
   {
-    AssertThrow(!plane_stress || name == "linear elastic",
+    AssertThrow(!plane_stress || registered_model(name).plane_stress,
                 ExcMessage("Material: the constitutive model '" + name +
                            "' needs 'Model = plane strain'; plasticity in "
                            "plane stress is not implemented (the return map "
@@ -321,18 +309,10 @@ namespace bsmpm
     try
       {
         check_constitutive_model_compatibility(name, plane_stress);
-        if (name == "von Mises")
-          model = VonMisesPlasticity::create(prm,
-                                             elastic.youngs_modulus(),
-                                             elastic.poissons_ratio());
-        else if (name == "Drucker-Prager")
-          model = DruckerPragerPlasticity::create(prm,
-                                                  elastic.youngs_modulus(),
-                                                  elastic.poissons_ratio());
-        else
-          model = std::make_unique<LinearElasticModel>(elastic.youngs_modulus(),
-                                                       elastic.poissons_ratio(),
-                                                       plane_stress);
+        model = registered_model(name).create(prm,
+                                              {elastic.youngs_modulus(),
+                                               elastic.poissons_ratio(),
+                                               plane_stress});
       }
     catch (...)
       {

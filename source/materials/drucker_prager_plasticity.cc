@@ -99,10 +99,9 @@ namespace bsmpm
 
 
 
-  std::unique_ptr<DruckerPragerPlasticity>
-  DruckerPragerPlasticity::create(ParameterHandler &prm,
-                                  const double      youngs_modulus,
-                                  const double      poissons_ratio)
+  std::unique_ptr<ConstitutiveModel>
+  DruckerPragerPlasticity::create(ParameterHandler       &prm,
+                                  const ElasticConstants &elastic)
   {
     prm.enter_subsection("Drucker-Prager");
     const double      to_radians = numbers::PI / 180.;
@@ -111,8 +110,8 @@ namespace bsmpm
     const double      dilation   = prm.get_double("Dilation angle");
     const std::string match      = prm.get("Mohr-Coulomb match");
     prm.leave_subsection();
-    return std::make_unique<DruckerPragerPlasticity>(youngs_modulus,
-                                                     poissons_ratio,
+    return std::make_unique<DruckerPragerPlasticity>(elastic.youngs_modulus,
+                                                     elastic.poissons_ratio,
                                                      cohesion,
                                                      friction * to_radians,
                                                      dilation * to_radians,
@@ -227,4 +226,12 @@ namespace bsmpm
   {
     return "Drucker-Prager";
   }
+
+
+
+  BSMPM_REGISTER_CONSTITUTIVE_MODEL(
+    DruckerPragerPlasticity,
+    "Drucker-Prager",
+    false,
+    "a frictional cone, subsection 'Drucker-Prager'")
 } // namespace bsmpm

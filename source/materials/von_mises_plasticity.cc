@@ -46,17 +46,16 @@ namespace bsmpm
 
 
 
-  std::unique_ptr<VonMisesPlasticity>
-  VonMisesPlasticity::create(ParameterHandler &prm,
-                             const double      youngs_modulus,
-                             const double      poissons_ratio)
+  std::unique_ptr<ConstitutiveModel>
+  VonMisesPlasticity::create(ParameterHandler       &prm,
+                             const ElasticConstants &elastic)
   {
     prm.enter_subsection("von Mises");
     const double yield_stress      = prm.get_double("Yield stress");
     const double hardening_modulus = prm.get_double("Hardening modulus");
     prm.leave_subsection();
-    return std::make_unique<VonMisesPlasticity>(youngs_modulus,
-                                                poissons_ratio,
+    return std::make_unique<VonMisesPlasticity>(elastic.youngs_modulus,
+                                                elastic.poissons_ratio,
                                                 yield_stress,
                                                 hardening_modulus);
   }
@@ -119,4 +118,12 @@ namespace bsmpm
   {
     return "von Mises";
   }
+
+
+
+  BSMPM_REGISTER_CONSTITUTIVE_MODEL(
+    VonMisesPlasticity,
+    "von Mises",
+    false,
+    "plasticity with linear hardening, subsection 'von Mises'")
 } // namespace bsmpm

@@ -31,6 +31,7 @@
 
 #include <bsmpm/materials/constitutive_model.h>
 #include <bsmpm/materials/drucker_prager_plasticity.h>
+#include <bsmpm/materials/linear_elastic_model.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/materials/von_mises_plasticity.h>
 #include <bsmpm/solver/constitutive_update.h>
@@ -787,6 +788,13 @@ namespace
       prm->parse_input_from_string(text);
       return prm;
     };
+    {
+      // Every model registers itself; the selection offers exactly those.
+      std::string names;
+      for (const auto &name : constitutive_model_names())
+        names += "'" + name + "' ";
+      deallog << "registered: " << names << std::endl;
+    }
     {
       auto prm   = make("");
       auto model = create_constitutive_model(*prm);

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace bsmpm
 {
@@ -151,35 +152,6 @@ namespace bsmpm
 
 
   /**
-   * Isotropic linear elasticity. In plane strain the in-plane block of the
-   * tangent is LinearElasticMaterial::stiffness(); in plane stress update()
-   * replaces the zz elastic strain by the one that makes sigma_zz = 0 and
-   * the tangent is that of the condensed map.
-   */
-  class LinearElasticModel : public ConstitutiveModel
-  {
-  public:
-    LinearElasticModel(const double youngs_modulus,
-                       const double poissons_ratio,
-                       const bool   plane_stress = false);
-
-    ConstitutiveResponse
-    update(ConstitutiveState &state) const override;
-    SymmetricTensor<4, 3>
-    elastic_tangent() const override;
-    bool
-    is_linear() const override;
-    std::string
-    name() const override;
-
-  private:
-    bool                  plane_stress;
-    SymmetricTensor<4, 3> stiffness;
-  };
-
-
-
-  /**
    * Eigenvalues and orthonormal eigenvectors of a symmetric tensor (Jacobi's
    * method), in descending order, and the assembly of isotropic tensor
    * functions and of their derivatives from principal values
@@ -231,11 +203,50 @@ namespace bsmpm
                             const std::function<double(double)> &f,
                             const std::function<double(double)> &df);
 
+  /** What every model is made from: the elastic constants of "Material"
+   * and the plane idealisation. */
+  struct ElasticConstants
+  {
+    double youngs_modulus;
+    double poissons_ratio;
+    bool   plane_stress;
+  };
+
   /**
-   * Declares "Material/Constitutive model" and the subsections of the
-   * models ("Material/von Mises", "Material/Drucker-Prager"). Call it at the
-   * top level: it enters "Material" itself. LinearElasticMaterial::
-   * declare_parameters() calls it.
+   * One constitutive model as the registry knows it: what "Material/
+   * Constitutive model" documents for it, whether it may be used in plane
+   * stress, and how its parameters are declared and read (in the subsection
+   * "Material", each model in a subsection of its own).
+   */
+  struct ConstitutiveModelEntry
+  {
+    std::string description;
+    bool        plane_stress;
+    void (*declare_parameters)(ParameterHandler &prm);
+    std::unique_ptr<ConstitutiveModel> (
+      *create)(ParameterHandler &prm, const ElasticConstants &elastic);
+  };
+
+  /**
+   * Adds a model to the registry under @p name, the value of "Material/
+   * Constitutive model" that selects it. Called before main() by
+   * BSMPM_REGISTER_CONSTITUTIVE_MODEL in the model's own source file, so
+   * that this interface knows no model (the pattern of ASPECT's
+   * ASPECT_REGISTER_MATERIAL_MODEL). Returns true.
+   */
+  bool
+  register_constitutive_model(const std::string            &name,
+                              const ConstitutiveModelEntry &entry);
+
+  /** The names of the registered models, in alphabetical order. */
+  std::vector<std::string>
+  constitutive_model_names();
+
+  /**
+   * Declares "Material/Constitutive model" (a selection among the
+   * registered models) and the parameters of every registered model. Call
+   * it at the top level: it enters "Material" itself.
+   * LinearElasticMaterial::declare_parameters() calls it.
    */
   void
   declare_constitutive_parameters(ParameterHandler &prm);
@@ -243,7 +254,8 @@ namespace bsmpm
   /**
    * The model chosen in "Material/Constitutive model", with the elastic
    * constants and the plane model of "Material" (checked as
-   * LinearElasticMaterial does). Refuses plasticity in plane stress.
+   * LinearElasticMaterial does). Refuses a model that needs plane strain in
+   * plane stress.
    */
   std::unique_ptr<ConstitutiveModel>
   create_constitutive_model(ParameterHandler &prm);
@@ -256,5 +268,26 @@ namespace bsmpm
   check_constitutive_model_compatibility(const std::string &name,
                                          const bool         plane_stress);
 } // namespace bsmpm
+
+/**
+ * Registers the ConstitutiveModel @p classname under the parameter value
+ * @p name (see register_constitutive_model()). @p classname needs
+ * static declare_parameters(ParameterHandler &) and
+ * static create(ParameterHandler &, const ElasticConstants &). Use it once,
+ * inside namespace bsmpm of the model's source file.
+ */
+#define BSMPM_REGISTER_CONSTITUTIVE_MODEL(classname,                        \
+                                          name,                             \
+                                          plane_stress,                     \
+                                          description)                      \
+  namespace                                                                 \
+  {                                                                         \
+    const bool classname##_is_registered =                                  \
+      ::bsmpm::register_constitutive_model(name,                            \
+                                           {description,                    \
+                                            plane_stress,                   \
+                                            &classname::declare_parameters, \
+                                            &classname::create});           \
+  }
 
 #endif

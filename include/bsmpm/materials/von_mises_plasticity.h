@@ -22,10 +22,8 @@ namespace bsmpm
     static void
     declare_parameters(ParameterHandler &prm);
     /** Reads "von Mises" inside the current subsection. */
-    static std::unique_ptr<VonMisesPlasticity>
-    create(ParameterHandler &prm,
-           const double      youngs_modulus,
-           const double      poissons_ratio);
+    static std::unique_ptr<ConstitutiveModel>
+    create(ParameterHandler &prm, const ElasticConstants &elastic);
 
     ConstitutiveResponse
     update(ConstitutiveState &state) const override;
