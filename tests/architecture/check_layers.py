@@ -8,7 +8,8 @@ import re
 import sys
 
 # Bottom to top. The orchestrator (include/bsmpm/scene.h, source/scene.cc)
-# and the driver (source/main.cc) stand above all of them.
+# and the driver (source/main.cc) stand above all of them; the driver's
+# parts (command line, parameter files, sweeps, error reports) are io.
 LAYERS = ["base", "geometry", "materials", "points", "verification",
           "boundary", "solver", "io"]
 TOP = len(LAYERS)
