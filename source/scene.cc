@@ -1,16 +1,7 @@
 #include <deal.II/base/mpi.h>
 
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
-
-#include <deal.II/numerics/data_out.h>
-
 #include <bsmpm/base/parameter_tools.h>
-#include <bsmpm/io/curve_output.h>
 #include <bsmpm/io/input_checks.h>
-#include <bsmpm/io/point_output.h>
 #include <bsmpm/scene.h>
 #include <bsmpm/verification/error_measures.h>
 
@@ -29,6 +20,12 @@ namespace bsmpm
     , grid(communicator)
     , points(grid)
     , output(communicator)
+    , step_output(output,
+                  grid,
+                  points,
+                  boundary_curves,
+                  neumann_loads,
+                  implicit_boundary)
     , checkpoint(communicator)
   {}
 
@@ -373,39 +370,6 @@ namespace bsmpm
 
 
 
-  std::vector<double>
-  Scene::support_qualities() const
-  {
-    return GhostPenalty::cell_qualities(
-      grid,
-      cell_moments,
-      assembly->constraints(),
-      constitutive_update ? constitutive_update->support_stiffness_ratios() :
-                            nullptr);
-  }
-
-
-
-  std::vector<double>
-  Scene::fill_fractions() const
-  {
-    std::vector<double> fraction(grid.triangulation().n_active_cells(), 0.);
-    const double        area = grid.cell_size()[0] * grid.cell_size()[1];
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int c = cell->active_cell_index();
-          fraction[c] =
-            cut_cell_quadrature.active() ?
-              cut_cell_quadrature.geometry().fraction(
-                grid.cell_index(cell->center())) :
-              (cell_moments.empty() ? 0. : cell_moments[c].v / area);
-        }
-    return fraction;
-  }
-
-
-
   LinearSolver::Report
   Scene::solve(const unsigned int step)
   {
@@ -562,83 +526,17 @@ namespace bsmpm
   void
   Scene::write_output(const unsigned int step, const double load_factor)
   {
-    TimerOutput::Scope t(timer, "output");
-
-    DataOut<2> grid_out;
-    grid_out.attach_dof_handler(grid.dof_handler());
-    std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector_field(2, DataComponentInterpretation::component_is_part_of_vector);
-    grid_out.add_data_vector(increment,
-                             std::vector<std::string>(2,
-                                                      "displacement_increment"),
-                             DataOut<2>::type_dof_data,
-                             vector_field);
-    const std::vector<double> fraction = fill_fractions();
-    Vector<float>             fill(fraction.begin(), fraction.end());
-    Vector<float>             subdomain(grid.triangulation().n_active_cells());
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        subdomain[cell->active_cell_index()] = cell->subdomain_id();
-    grid_out.add_data_vector(fill, "material_fraction");
-    const std::vector<double> qualities =
-      cell_moments.empty() ? std::vector<double>(fraction.size()) :
-                             support_qualities();
-    Vector<float> quality(qualities.begin(), qualities.end());
-    for (auto &q : quality)
-      q = std::max(q, 0.f);
-    grid_out.add_data_vector(quality, "support_quality");
-    grid_out.add_data_vector(subdomain, "subdomain");
-    grid_out.build_patches();
-    grid_out.set_flags(output.vtk_flags());
-    output.write_series("grid", step, load_factor, grid_out);
-
-    const PointOutput points_out(points, output.vtk_flags());
-    output.write_series(
-      "points",
-      step,
-      load_factor,
-      [&](std::ostream &out) { points_out.write_vtu(out); },
-      [&](std::ostream &out, const std::vector<std::string> &pieces) {
-        points_out.write_pvtu_record(out, pieces);
-      });
-
-    if (!boundary_curves.empty())
-      {
-        // Gauss points live where their cells do: gather them for the file.
-        std::vector<double> local;
-        for (const auto &g : neumann_loads.quadrature_points())
-          local.insert(local.end(),
-                       {g.position[0],
-                        g.position[1],
-                        g.traction[0],
-                        g.traction[1],
-                        g.weight});
-        std::vector<NeumannLoads::QuadraturePoint> gauss;
-        for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
-          for (std::size_t i = 0; i + 4 < part.size(); i += 5)
-            gauss.push_back({Point<2>(part[i], part[i + 1]),
-                             Tensor<1, 2>({part[i + 2], part[i + 3]}),
-                             part[i + 4]});
-        local.clear();
-        for (const auto &b : implicit_boundary.band_points())
-          local.insert(local.end(),
-                       {b.position[0], b.position[1], b.d_function, b.weight});
-        std::vector<ImplicitBoundary::BandPoint> band;
-        for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
-          for (std::size_t i = 0; i + 3 < part.size(); i += 4)
-            band.push_back(
-              {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3]});
-        output.write_serial_series(
-          "curves", step, load_factor, [this](std::ostream &out) {
-            CurveOutput::write_curves(out, boundary_curves);
-          });
-        output.write_serial_series(
-          "curve_points", step, load_factor, [&](std::ostream &out) {
-            CurveOutput::write_points(out, boundary_curves, gauss, band);
-          });
-      }
-
-    output.write_collections();
+    TimerOutput::Scope        t(timer, "output");
+    const std::vector<double> fractions =
+      cut_cell_quadrature.fill_fractions(grid, cell_moments);
+    step_output.write(step,
+                      load_factor,
+                      increment,
+                      fractions,
+                      cell_moments.empty() ?
+                        std::vector<double>(fractions.size()) :
+                        assembly->support_qualities(cell_moments,
+                                                    constitutive_update.get()));
   }
 
 
@@ -772,7 +670,8 @@ namespace bsmpm
           implicit_boundary.fits_prescribed_displacement(boundary_curves);
         if (has_prescribed)
           fit_prescribed_displacement(delta);
-        cell_quality = support_qualities();
+        cell_quality =
+          assembly->support_qualities(cell_moments, constitutive_update.get());
         // A Newton failure that cutting the increment does not cure comes
         // from a mechanism that the stabilisation leaves free: perfectly
         // plastic points at their limit, driven by the imbalance that the

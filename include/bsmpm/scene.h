@@ -21,6 +21,7 @@
 #include <bsmpm/io/checkpoint.h>
 #include <bsmpm/io/output_writer.h>
 #include <bsmpm/io/run_summary.h>
+#include <bsmpm/io/step_output.h>
 #include <bsmpm/materials/constitutive_model.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_point_layout.h>
@@ -101,12 +102,6 @@ namespace bsmpm
     /** Material moments of every cell, plain or by the cut-cell quadrature. */
     void
     compute_cell_moments();
-    /** Fill fraction of every locally owned cell. */
-    std::vector<double>
-    fill_fractions() const;
-    /** Support quality (GhostPenalty) of every locally owned cell. */
-    std::vector<double>
-    support_qualities() const;
     LinearSolver::Report
     solve(const unsigned int step);
     void
@@ -177,6 +172,7 @@ namespace bsmpm
     CutCellQuadrature               cut_cell_quadrature;
     LinearSolver                    linear_solver;
     OutputWriter                    output;
+    StepOutput                      step_output;
     Checkpoint                      checkpoint;
     Verification                    verification;
     std::unique_ptr<ExactSolution>  exact_solution;

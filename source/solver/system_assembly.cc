@@ -461,4 +461,17 @@ namespace bsmpm
     yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
     return newton_residual.l2_norm();
   }
+
+
+  std::vector<double>
+  SystemAssembly::support_qualities(const std::vector<CellMoments> &moments,
+                                    const ConstitutiveUpdate *update) const
+  {
+    return GhostPenalty::cell_qualities(parts.grid,
+                                        moments,
+                                        constraints(),
+                                        update ?
+                                          update->support_stiffness_ratios() :
+                                          nullptr);
+  }
 } // namespace bsmpm

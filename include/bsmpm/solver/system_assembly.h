@@ -170,6 +170,16 @@ namespace bsmpm
       const unsigned int                                curve,
       const LinearAlgebra::distributed::Vector<double> &increment) const;
 
+    /**
+     * The support quality (GhostPenalty::cell_qualities()) of every locally
+     * owned cell with the material moments @p moments under the constraints
+     * of the last make_constraints(). With @p update (a nonlinear material)
+     * the stiffness that its points have lost lowers it.
+     */
+    std::vector<double>
+    support_qualities(const std::vector<CellMoments> &moments,
+                      const ConstitutiveUpdate       *update) const;
+
     /** Locally owned points with volume that yield at the last
      * newton_system(), over all processes. */
     unsigned long long
