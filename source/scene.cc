@@ -2,6 +2,7 @@
 
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/io/input_checks.h>
+#include <bsmpm/points/move_diagnosis.h>
 #include <bsmpm/scene.h>
 #include <bsmpm/verification/error_measures.h>
 
@@ -453,60 +454,12 @@ namespace bsmpm
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
       AssertThrow(false,
-                  ExcMessage(std::to_string(report.n_left_grid) +
-                             " material point(s) left the background grid "
-                             "in load step " +
-                             std::to_string(step) + ", one of them to " +
-                             [&] {
-                               std::ostringstream p;
-                               p.precision(6);
-                               p << '(' << report.example[0] << ", "
-                                 << report.example[1] << "). ";
-                               return p.str();
-                             }() +
-                             diagnose(report) +
-                             " The output of the previous step is intact."));
-  }
-
-
-
-  std::string
-  Scene::diagnose(const MaterialPoints::MoveReport &report) const
-  {
-    std::ostringstream cause;
-    cause.precision(3);
-    const double h = grid.min_cell_size();
-    if (report.n_non_finite > 0)
-      cause << "The displacements of " << report.n_non_finite
-            << " point(s) are not finite (NaN or inf): a parameter or an "
-               "expression of the scene gives a non-finite value.";
-    else if (report.example_quality >= 0 &&
-             report.example_quality < ghost_penalty.quality_threshold())
-      cause << "The point came from a poorly filled cell (support quality "
-            << report.example_quality << ", below the stabilisation threshold "
-            << ghost_penalty.quality_threshold()
-            << "): its material holds the cell's DoFs by almost nothing. "
-            << (ghost_penalty.enabled() ?
-                  "Raise Ghost penalty/Penalty, or use more points per cell." :
-                  "Enable the stabilisation (Ghost penalty/Enable = true).");
-    else if (report.max_increment >
-             100 * grid.lower_left().distance(grid.upper_right()))
-      cause << "The loads are far too large for the material: the largest "
-               "displacement increment of a point is "
-            << report.max_increment
-            << " m, far beyond the grid. Check the magnitudes of the loads "
-               "(tractions, pressure, density and gravity) against the "
-               "moduli.";
-    else if (report.max_increment > 0.5 * h)
-      cause << "The load step is too large: the largest displacement "
-               "increment of a point is "
-            << report.max_increment << " m, " << report.max_increment / h
-            << " cells, where small-strain MPM needs increments well below "
-               "a cell. Use more load steps (Loading/Load steps).";
-    else
-      cause << "The body reaches the edge of the grid: enlarge the grid "
-               "(Background grid).";
-    return cause.str();
+                  ExcMessage(
+                    MoveDiagnosis::message(report,
+                                           step,
+                                           grid,
+                                           ghost_penalty.quality_threshold(),
+                                           ghost_penalty.enabled())));
   }
 
 

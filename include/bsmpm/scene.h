@@ -124,9 +124,6 @@ namespace bsmpm
      * @p delta of load step @p step. */
     void
     move_points(const unsigned int step, const double delta);
-    /** Why points left the grid, from what the step can see. */
-    std::string
-    diagnose(const MaterialPoints::MoveReport &report) const;
     void
     update_curves();
     void
