@@ -6,8 +6,8 @@
 #include <bsmpm/scene.h>
 #include <bsmpm/verification/error_measures.h>
 
+#include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <sstream>
 
 namespace bsmpm
@@ -262,6 +262,15 @@ namespace bsmpm
           constitutive_update->use_quadrature_weights(
             cut_cell_quadrature.active());
         }
+      increment_solver = std::make_unique<IncrementSolver>(
+        IncrementSolver::Parts{grid,
+                               *assembly,
+                               linear_solver,
+                               newton,
+                               points,
+                               boundary_curves,
+                               constitutive_update.get()},
+        timer);
       increment.reinit(grid.locally_owned_dofs(),
                        grid.locally_relevant_dofs(),
                        communicator);
@@ -367,50 +376,6 @@ namespace bsmpm
         for (const auto &[name, count] : cut_cell_quadrature.statistics())
           run_summary.quantities[name] = count;
       }
-  }
-
-
-
-  LinearSolver::Report
-  Scene::solve(const unsigned int step)
-  {
-    TimerOutput::Scope t(timer, "solve");
-    check_loads_finite(step);
-    TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
-                                           communicator);
-    const auto report = linear_solver.solve(assembly->matrix(),
-                                            solution,
-                                            assembly->rhs(),
-                                            grid.dof_handler());
-    assembly->constraints().distribute(solution);
-    AssertThrow(std::isfinite(solution.l2_norm()),
-                ExcMessage("The linear solver returned a displacement that is "
-                           "not finite in load step " +
-                           std::to_string(step) +
-                           " although the loads are finite: the system is "
-                           "singular (a body that is not held against rigid "
-                           "motion, or cells without stabilisation: Ghost "
-                           "penalty/Enable)."));
-
-    for (const auto i : grid.locally_owned_dofs())
-      increment(i) = solution(i);
-    increment.update_ghost_values();
-    return report;
-  }
-
-
-
-  void
-  Scene::check_loads_finite(const unsigned int step) const
-  {
-    // A load that is not finite (an expression dividing by zero, a density
-    // or gravity of inf): say so before the solver turns it into NaN
-    // displacements.
-    AssertThrow(std::isfinite(assembly->rhs().l2_norm()),
-                ExcMessage("The loads of load step " + std::to_string(step) +
-                           " are not finite (NaN or inf): check the "
-                           "tractions, prescribed displacements, density and "
-                           "gravity of the scene."));
   }
 
 
@@ -656,54 +621,18 @@ namespace bsmpm
           }
         if (constitutive_update)
           {
-            check_loads_finite(step);
-            constitutive_update->set_body_force((lambda + delta) *
-                                                material.density() * gravity);
-            const auto result = solve_nonlinear(delta, record);
-            if (!result.converged)
+            if (!solve_nonlinear(step, lambda, delta, cuts, record))
               {
-                if (pcout.is_active())
-                  {
-                    std::ostringstream line;
-                    line << "       load " << lambda << " + " << delta << ": "
-                         << result.failure << ", |R_k|/|R_0|" << std::scientific
-                         << std::setprecision(1);
-                    for (const auto &iteration : result.iterations)
-                      line << ' ' << iteration.relative_residual;
-                    pcout << line.str() << '\n';
-                  }
-                AssertThrow(
-                  cuts < newton.max_step_cuts(),
-                  ExcMessage(
-                    "Load step " + std::to_string(step) +
-                    ": the Newton iterations failed (" + result.failure +
-                    ") although the load increment was halved " +
-                    std::to_string(cuts) + " times, to " +
-                    std::to_string(delta) +
-                    " of the load: the body may have reached its limit "
-                    "load, or the increment needs more cuts (Nonlinear "
-                    "solver/Maximum step cuts). The output of the previous "
-                    "step is intact."));
                 ++cuts;
                 delta /= 2;
                 continue;
               }
-            TimerOutput::Scope t(timer, "update points");
-            previous_increment = increment;
-            previous_delta     = delta;
-            record.n_yielded =
-              constitutive_update->commit(points,
-                                          grid,
-                                          assembly->kernel(),
-                                          increment,
-                                          has_prescribed ? &prescribed :
-                                                           nullptr);
           }
         else
           {
-            const auto report        = solve(step);
-            record.solver            = report.method;
-            record.iterations        = report.iterations;
+            const auto report = increment_solver->solve_linear(step, increment);
+            record.solver     = report.method;
+            record.iterations = report.iterations;
             record.refinement_steps  = report.refinement_steps;
             record.relative_residual = report.relative_residual;
           }
@@ -718,97 +647,51 @@ namespace bsmpm
 
 
 
-  NewtonSolver::Result
-  Scene::solve_nonlinear(const double delta, RunSummary::Step &record)
+  bool
+  Scene::solve_nonlinear(const unsigned int step,
+                         const double       lambda,
+                         const double       delta,
+                         const unsigned int cuts,
+                         RunSummary::Step  &record)
   {
-    TrilinosWrappers::MPI::Vector last_correction;
-    // Start from the last converged increment scaled to this one: points
-    // that yielded then are evaluated on the plastic branch from the first
-    // iteration, where a start from zero would see them on the yield surface
-    // with the elastic tangent and overshoot.
-    // Zeroing a ghosted vector leaves it without ghost values: import the
-    // zeros, or the cells next to another process read ghosts it does not
-    // have.
-    increment = 0;
-    increment.update_ghost_values();
-    const auto  *d_a = has_prescribed ? &prescribed : nullptr;
-    const double reference =
-      assembly->newton_system(*constitutive_update, points, increment, d_a);
-    // |R| of the system the assembly holds, that of the start.
-    double start_norm = reference;
-    if (previous_delta > 0 && previous_increment.size() == increment.size())
+    assembly->check_loads_finite(step);
+    constitutive_update->set_body_force((lambda + delta) * material.density() *
+                                        gravity);
+    IncrementSolver::LinearSolves solves;
+    const auto                    result = increment_solver->solve_newton(
+      delta, has_prescribed ? &prescribed : nullptr, increment, solves);
+    if (solves.n_solves > 0)
       {
-        increment.add(delta / previous_delta, previous_increment);
-        assembly->constraints().set_zero(increment);
-        increment.update_ghost_values();
-        // Where the last increment is a poor guess (finite rotations, a
-        // load path that turns), start from zero after all. The residual
-        // weighs the stiff modes most, so a guess that is closer in
-        // displacement may still leave a larger one: only one ten times
-        // larger than that of zero is dropped (cantilever in finite
-        // strain: 26 times in step 3).
-        start_norm =
-          assembly->newton_system(*constitutive_update, points, increment, d_a);
-        if (!(start_norm < 10 * reference))
-          {
-            increment = 0;
-            increment.update_ghost_values();
-            start_norm = -1; // the held system is not that of zero
-          }
+        record.solver            = solves.method;
+        record.relative_residual = solves.relative_residual;
       }
-    record.iterations = 0;
-    const auto result = newton.solve(
-      reference,
-      [&]() {
-        return assembly->newton_system(*constitutive_update,
-                                       points,
-                                       increment,
-                                       d_a);
-      },
-      [&]() {
-        TimerOutput::Scope            t(timer, "solve");
-        TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
-                                                 communicator);
-        // A pressure that follows the boundary within the step (finite
-        // strain) has an unsymmetric load stiffness.
-        const bool symmetric =
-          constitutive_update->symmetric_tangent() &&
-          !(constitutive_update->kinematics() ==
-              ConstitutiveUpdate::Kinematics::finite_strain &&
-            boundary_curves.has_loads());
-        const auto report = linear_solver.solve(assembly->tangent(),
-                                                correction,
-                                                assembly->residual(),
-                                                grid.dof_handler(),
-                                                symmetric);
-        assembly->constraints().distribute(correction);
-        for (const auto i : grid.locally_owned_dofs())
-          increment(i) += correction(i);
-        increment.update_ghost_values();
-        record.solver = report.method;
-        record.iterations += report.iterations;
-        record.refinement_steps += report.refinement_steps;
-        record.relative_residual = report.relative_residual;
-        const double size        = increment.l2_norm();
-        last_correction          = correction;
-        return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
-                              report.iterations);
-      },
-      [&](const double alpha) {
-        // From x + a dx to x + (a - alpha) dx.
-        for (const auto i : grid.locally_owned_dofs())
-          increment(i) -= alpha * last_correction(i);
-        increment.update_ghost_values();
-      },
-      // dx . R(x): the slope of the potential along dx, for the line search.
-      [&]() { return last_correction * assembly->residual(); },
-      start_norm);
+    record.iterations = solves.iterations;
+    record.refinement_steps += solves.refinement_steps;
     for (const auto &iteration : result.iterations)
       {
         record.newton_residuals.push_back(iteration.relative_residual);
         record.newton_corrections.push_back(iteration.relative_correction);
       }
-    return result;
+    if (!result.converged)
+      {
+        newton.report_failure(result,
+                              step,
+                              lambda,
+                              delta,
+                              cuts,
+                              pcout.is_active() ? &pcout.get_stream() :
+                                                  nullptr);
+        return false;
+      }
+    TimerOutput::Scope t(timer, "update points");
+    increment_solver->accept(increment, delta);
+    record.n_yielded =
+      constitutive_update->commit(points,
+                                  grid,
+                                  assembly->kernel(),
+                                  increment,
+                                  has_prescribed ? &prescribed : nullptr);
+    return true;
   }
 
 

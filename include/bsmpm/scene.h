@@ -29,6 +29,7 @@
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/solver/constitutive_update.h>
 #include <bsmpm/solver/cut_cell_quadrature.h>
+#include <bsmpm/solver/increment_solver.h>
 #include <bsmpm/solver/linear_solver.h>
 #include <bsmpm/solver/newton_solver.h>
 #include <bsmpm/solver/system_assembly.h>
@@ -102,10 +103,6 @@ namespace bsmpm
     /** Material moments of every cell, plain or by the cut-cell quadrature. */
     void
     compute_cell_moments();
-    LinearSolver::Report
-    solve(const unsigned int step);
-    void
-    check_loads_finite(const unsigned int step) const;
     /**
      * Takes the load from factor @p from to @p to: one increment, or more
      * where a nonlinear material's Newton iterations fail and the
@@ -117,9 +114,14 @@ namespace bsmpm
             const double       to,
             RunSummary::Step  &record);
     /** Newton iterations of a nonlinear material for the assembled load
-     * increment; the increment starts from zero. */
-    NewtonSolver::Result
-    solve_nonlinear(const double delta, RunSummary::Step &record);
+     * increment @p delta from @p lambda, cut @p cuts times so far; commits
+     * the points' state if they converge. Returns whether they did. */
+    bool
+    solve_nonlinear(const unsigned int step,
+                    const double       lambda,
+                    const double       delta,
+                    const unsigned int cuts,
+                    RunSummary::Step  &record);
     /** Moves the points by the converged increment of load increment
      * @p delta of load step @p step. */
     void
@@ -157,29 +159,26 @@ namespace bsmpm
              constitutive_update->kinematics() ==
                ConstitutiveUpdate::Kinematics::finite_strain;
     }
-    NewtonSolver                    newton;
-    BodyRegion                      region;
-    MaterialPointLayout             layout;
-    MaterialPoints                  points;
-    BoundaryCurves                  boundary_curves;
-    NeumannLoads                    neumann_loads;
-    ImplicitBoundary                implicit_boundary;
-    NitscheBoundary                 nitsche_boundary;
-    GhostPenalty                    ghost_penalty;
-    CutCellQuadrature               cut_cell_quadrature;
-    LinearSolver                    linear_solver;
-    OutputWriter                    output;
-    StepOutput                      step_output;
-    Checkpoint                      checkpoint;
-    Verification                    verification;
-    std::unique_ptr<ExactSolution>  exact_solution;
-    std::unique_ptr<SystemAssembly> assembly;
+    NewtonSolver                     newton;
+    BodyRegion                       region;
+    MaterialPointLayout              layout;
+    MaterialPoints                   points;
+    BoundaryCurves                   boundary_curves;
+    NeumannLoads                     neumann_loads;
+    ImplicitBoundary                 implicit_boundary;
+    NitscheBoundary                  nitsche_boundary;
+    GhostPenalty                     ghost_penalty;
+    CutCellQuadrature                cut_cell_quadrature;
+    LinearSolver                     linear_solver;
+    OutputWriter                     output;
+    StepOutput                       step_output;
+    Checkpoint                       checkpoint;
+    Verification                     verification;
+    std::unique_ptr<ExactSolution>   exact_solution;
+    std::unique_ptr<SystemAssembly>  assembly;
+    std::unique_ptr<IncrementSolver> increment_solver;
 
     LinearAlgebra::distributed::Vector<double> increment;
-    /** The last converged increment of a nonlinear material and its load
-     * increment: the start of the next Newton iterations. */
-    LinearAlgebra::distributed::Vector<double> previous_increment;
-    double                                     previous_delta = 0;
     /** Whether points moved since they were last sorted into cells. */
     bool points_moved = false;
     /** Nodal values d^a of the prescribed displacement increment (IBM). */

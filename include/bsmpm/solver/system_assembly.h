@@ -180,6 +180,11 @@ namespace bsmpm
     support_qualities(const std::vector<CellMoments> &moments,
                       const ConstitutiveUpdate       *update) const;
 
+    /** Throws if the loads of the last assemble() (of load step @p step)
+     * are not finite. */
+    void
+    check_loads_finite(const unsigned int step) const;
+
     /** Locally owned points with volume that yield at the last
      * newton_system(), over all processes. */
     unsigned long long
