@@ -55,60 +55,12 @@ namespace bsmpm
                       "load steps like every other load.");
     prm.leave_subsection();
 
-    prm.enter_subsection("Reactions");
-    prm.declare_entry("Curves",
-                      "",
-                      Patterns::List(Patterns::Integer(1)),
-                      "Boundary curves (by number) whose supports' force on "
-                      "the body is reported after every load step as "
-                      "quantities curve<k>_force_x and _y (SupportReaction: "
-                      "the nodal force of the supports' terms in the "
-                      "discrete equations, summed; it balances the internal "
-                      "force as the solver integrates it).");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Probe");
-    prm.declare_entry("Point",
-                      "",
-                      Patterns::Anything(),
-                      "Initial position of a zero-volume point that moves "
-                      "with the body and whose displacement is reported as "
-                      "quantities <name>_displacement_x, _y and "
-                      "<name>_deflection (= -displacement_y); empty: none.");
-    prm.declare_entry("Name",
-                      "probe",
-                      Patterns::Anything(),
-                      "Name of the probe.");
-    prm.leave_subsection();
+    SupportReaction::declare_parameters(prm);
+    Probe::declare_parameters(prm);
 
     BackgroundGrid::declare_parameters(prm);
     LinearElasticMaterial::declare_parameters(prm);
-    prm.enter_subsection("Material");
-    prm.declare_entry(
-      "Volumetric strain",
-      "B-bar",
-      Patterns::Selection("B-bar|standard"),
-      "Nonlinear constitutive models: B-bar replaces the volumetric strain "
-      "of every point by the mean over the points of its cell, so that "
-      "isochoric plastic flow does not lock the bilinear grid; standard "
-      "keeps the points' own (a model that stays elastic then gives the "
-      "linear code's results, up to the cut cells' quadrature). Linear "
-      "elasticity always uses the standard strain.");
-    prm.declare_entry(
-      "Kinematics",
-      "small strain",
-      Patterns::Selection("small strain|finite strain"),
-      "small strain: the paper's formulation (strain increments added, "
-      "stress of the small-strain model). finite strain: updated "
-      "Lagrangian, a deformation gradient per point, logarithmic (Hencky) "
-      "elastic strain with the exponential map, Kirchhoff stress, point "
-      "volumes det(F) V0, a pressure that follows the boundary within the "
-      "load step (doc/finite-strain.md). Finite strain always uses Newton "
-      "iterations, also for linear elasticity, and needs plane strain. "
-      "Without boundary curves, a free closed curve round the body region "
-      "is added (Curve 1), so that the cut-cell quadrature integrates the "
-      "cells the moving points fill unevenly.");
-    prm.leave_subsection();
+    ConstitutiveUpdate::declare_parameters(prm);
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
     BoundaryCurves::declare_parameters(prm);
@@ -136,45 +88,21 @@ namespace bsmpm
     gravity      = ParameterTools::get_point(prm, "Gravity");
     prm.leave_subsection();
 
-    prm.enter_subsection("Reactions");
-    reaction_curves.clear();
-    for (const auto &k : Utilities::split_string_list(prm.get("Curves")))
-      reaction_curves.push_back(Utilities::string_to_int(k) - 1);
-    prm.leave_subsection();
-
-    prm.enter_subsection("Probe");
-    has_probe = !Utilities::trim(prm.get("Point")).empty();
-    if (has_probe)
-      probe_position = ParameterTools::get_point(prm, "Point");
-    probe_name = prm.get("Name");
-    prm.leave_subsection();
+    reactions.parse_parameters(prm);
+    probe.parse_parameters(prm);
 
     grid.parse_parameters(prm);
     material.parse_parameters(prm);
     constitutive_model = create_constitutive_model(prm);
-    prm.enter_subsection("Material");
-    const bool b_bar         = prm.get("Volumetric strain") == "B-bar";
-    const bool finite_strain = prm.get("Kinematics") == "finite strain";
-    prm.leave_subsection();
-    AssertThrow(!finite_strain || material.model() ==
-                                    LinearElasticMaterial::Model::plane_strain,
-                ExcMessage("Material/Kinematics = finite strain needs "
-                           "'Model = plane strain': in plane stress the "
-                           "thickness stretch would be a further unknown."));
-    constitutive_update.reset();
-    if (!constitutive_model->is_linear() || finite_strain)
-      constitutive_update = std::make_unique<ConstitutiveUpdate>(
-        *constitutive_model,
-        b_bar && !constitutive_model->is_linear(),
-        finite_strain ? ConstitutiveUpdate::Kinematics::finite_strain :
-                        ConstitutiveUpdate::Kinematics::small_strain);
+    constitutive_update =
+      ConstitutiveUpdate::create(prm, *constitutive_model, material);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
     if (this->finite_strain())
-      enclose_body_region(prm);
+      BoundaryCurves::enclose_body_region(prm, region, grid.min_cell_size());
     boundary_curves.parse_parameters(prm);
     neumann_loads.parse_parameters(prm);
     implicit_boundary.parse_parameters(prm);
@@ -197,8 +125,8 @@ namespace bsmpm
     {
       TimerOutput::Scope                            t(timer, "setup: checks");
       std::vector<std::pair<std::string, Point<2>>> named;
-      if (has_probe)
-        named.emplace_back("Probe/Point", probe_position);
+      if (probe.enabled())
+        named.emplace_back("Probe/Point", probe.position());
       InputChecks::check(grid, region, layout, boundary_curves, named);
     }
     {
@@ -217,11 +145,8 @@ namespace bsmpm
       std::vector<types::particle_index> tracked;
       if (!boundary_curves.empty())
         tracked = boundary_curves.create_points(points, region);
-      if (has_probe)
-        {
-          probe_slot = tracked.size();
-          tracked.push_back(points.add_tracking_points({probe_position})[0]);
-        }
+      if (probe.enabled())
+        probe.add_to(points, tracked);
       if (!tracked.empty())
         {
           points.track(tracked);
@@ -237,7 +162,7 @@ namespace bsmpm
         }
       cut_cell_quadrature.initialize(boundary_curves);
     }
-    check_supports();
+    InputChecks::check_supports(grid, boundary_curves);
     {
       TimerOutput::Scope t(timer, "setup: system");
       assembly = std::make_unique<SystemAssembly>(
@@ -252,7 +177,7 @@ namespace bsmpm
                               gravity},
         timer);
       assembly->setup();
-      assembly->keep_support_terms(reaction_curves);
+      assembly->keep_support_terms(reactions.curves());
       if (constitutive_update)
         {
           assembly->leave_material_to_points(&points);
@@ -284,65 +209,6 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
-  }
-
-
-
-  void
-  Scene::enclose_body_region(ParameterHandler &prm) const
-  {
-    // Points that move across cells leave full cells with uneven point
-    // sets and partly filled cells at the surface: integrated by the points
-    // alone, the stress of a column compressed by 38 % did not converge
-    // under refinement (L2_u 8.3e-2, 7.5e-2, 8.0e-2 for h = 0.5 .. 0.125).
-    // A closed curve round the body lets the cut-cell quadrature integrate
-    // those cells consistently (1.2e-3, 2.3e-4, 9.1e-5; doc/finite-strain.md).
-    prm.enter_subsection("Boundary curves");
-    for (unsigned int c = 1; c <= BoundaryCurves::max_curves; ++c)
-      {
-        prm.enter_subsection("Curve " + std::to_string(c));
-        const bool used = prm.get("Points") != "none";
-        prm.leave_subsection();
-        if (used)
-          {
-            prm.leave_subsection();
-            return;
-          }
-      }
-    // Tracking points about a cell apart on the longest side.
-    double longest = 0;
-    for (const auto &name : region.boundary_part_names())
-      {
-        const auto points = region.boundary_points(name, 129).points;
-        double     length = 0;
-        for (unsigned int i = 1; i < points.size(); ++i)
-          length += points[i].distance(points[i - 1]);
-        longest = std::max(longest, length);
-      }
-    const unsigned int n = std::max<unsigned int>(
-      2, std::ceil(longest / grid.min_cell_size() - 1e-9) + 1);
-    prm.enter_subsection("Curve 1");
-    prm.set("Points", "region edge");
-    prm.set("Edge", "boundary");
-    prm.set("Number of points", std::to_string(n));
-    prm.leave_subsection();
-    prm.leave_subsection();
-  }
-
-
-
-  void
-  Scene::check_supports() const
-  {
-    const bool curve_supports =
-      boundary_curves.has_supports(
-        BoundaryCurve::DirichletMethod::implicit_boundary) ||
-      boundary_curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
-    AssertThrow(grid.has_face_conditions() || curve_supports,
-                ExcMessage("The body has no support at all: no grid face "
-                           "condition and no fixed, roller or displacement "
-                           "condition on a boundary curve. Its stiffness "
-                           "cannot resist rigid motion; add a support."));
   }
 
 
@@ -510,41 +376,7 @@ namespace bsmpm
         record.number      = step;
         record.load_factor = load_factor;
         advance(step, double(step - 1) / n_load_steps, load_factor, record);
-        if (has_probe)
-          {
-            std::vector<Point<2>> positions;
-            std::vector<Voigt>    stresses;
-            points.tracked_states(positions, stresses);
-            const Tensor<1, 2> u = positions[probe_slot] - probe_position;
-            run_summary.quantities[probe_name + "_displacement_x"] = u[0];
-            run_summary.quantities[probe_name + "_displacement_y"] = u[1];
-            run_summary.quantities[probe_name + "_deflection"]     = -u[1];
-            const Voigt &sigma = stresses[probe_slot];
-            run_summary.quantities[probe_name + "_stress_xx"] = sigma[0];
-            run_summary.quantities[probe_name + "_stress_yy"] = sigma[1];
-            run_summary.quantities[probe_name + "_stress_xy"] = sigma[2];
-          }
-        if (!reaction_curves.empty())
-          {
-            TimerOutput::Scope t(timer, "reactions");
-            for (const unsigned int c : reaction_curves)
-              {
-                const Tensor<1, 2> force = SupportReaction::resultant(
-                  grid, assembly->support_forces(c, increment));
-                const std::string name = "curve" + std::to_string(c + 1);
-                run_summary.quantities[name + "_force_x"] = force[0];
-                run_summary.quantities[name + "_force_y"] = force[1];
-              }
-          }
-        if (boundary_curves.has_loads())
-          {
-            const Tensor<1, 2> force = neumann_loads.resultant(communicator);
-            run_summary.quantities["traction_resultant_x"] = force[0];
-            run_summary.quantities["traction_resultant_y"] = force[1];
-          }
-
-        if (constitutive_update)
-          run_summary.quantities["yielded_points"] = record.n_yielded;
+        record_quantities(record);
         record.quantities = run_summary.quantities;
         run_summary.steps.push_back(record);
         if (pcout.is_active())
@@ -559,6 +391,34 @@ namespace bsmpm
     if (exact_solution)
       evaluate_errors();
     finish();
+  }
+
+
+
+  void
+  Scene::record_quantities(const RunSummary::Step &record)
+  {
+    if (probe.enabled())
+      probe.record(points, run_summary.quantities);
+    if (!reactions.curves().empty())
+      {
+        TimerOutput::Scope t(timer, "reactions");
+        reactions.record(
+          grid,
+          [this](const unsigned int c) {
+            return assembly->support_forces(c, increment);
+          },
+          run_summary.quantities);
+      }
+    if (boundary_curves.has_loads())
+      {
+        const Tensor<1, 2> force = neumann_loads.resultant(communicator);
+        run_summary.quantities["traction_resultant_x"] = force[0];
+        run_summary.quantities["traction_resultant_y"] = force[1];
+      }
+
+    if (constitutive_update)
+      run_summary.quantities["yielded_points"] = record.n_yielded;
   }
 
 

@@ -5,10 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/la_parallel_vector.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
@@ -26,6 +23,7 @@
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
+#include <bsmpm/points/probe.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/solver/constitutive_update.h>
 #include <bsmpm/solver/cut_cell_quadrature.h>
@@ -89,15 +87,6 @@ namespace bsmpm
   private:
     void
     setup();
-    /** Throws if nothing holds the body against rigid motion. */
-    /** Finite strain without boundary curves: a free closed curve round
-     * the body region (Curve 1), so that the cut-cell quadrature follows
-     * the moving body. */
-    void
-    enclose_body_region(ParameterHandler &prm) const;
-
-    void
-    check_supports() const;
     void
     fit_prescribed_displacement(const double increment_factor);
     /** Material moments of every cell, plain or by the cut-cell quadrature. */
@@ -128,6 +117,10 @@ namespace bsmpm
     move_points(const unsigned int step, const double delta);
     void
     update_curves();
+    /** The probe, support reactions, traction resultant and yielded
+     * points after a load step, into the run's quantities. */
+    void
+    record_quantities(const RunSummary::Step &record);
     void
     write_output(const unsigned int step, const double load_factor);
     void
@@ -163,11 +156,13 @@ namespace bsmpm
     BodyRegion                       region;
     MaterialPointLayout              layout;
     MaterialPoints                   points;
+    Probe                            probe;
     BoundaryCurves                   boundary_curves;
     NeumannLoads                     neumann_loads;
     ImplicitBoundary                 implicit_boundary;
     NitscheBoundary                  nitsche_boundary;
     GhostPenalty                     ghost_penalty;
+    SupportReaction                  reactions;
     CutCellQuadrature                cut_cell_quadrature;
     LinearSolver                     linear_solver;
     OutputWriter                     output;
@@ -189,15 +184,6 @@ namespace bsmpm
     std::vector<CellMoments> cell_moments;
     /** Support quality of every locally owned cell in this step. */
     std::vector<double> cell_quality;
-
-    /** Curves (0-based) whose support forces are reported. */
-    std::vector<unsigned int> reaction_curves;
-
-    /** An optional zero-volume point whose displacement is reported. */
-    std::string  probe_name;
-    Point<2>     probe_position;
-    bool         has_probe  = false;
-    unsigned int probe_slot = 0;
 
     RunSummary run_summary;
   };
