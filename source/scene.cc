@@ -1,5 +1,3 @@
-#include <deal.II/base/mpi.h>
-
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/io/input_checks.h>
 #include <bsmpm/points/move_diagnosis.h>
@@ -8,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace bsmpm
 {
@@ -390,7 +387,12 @@ namespace bsmpm
 
     if (exact_solution)
       evaluate_errors();
-    finish();
+    run_summary.finish(verification,
+                       output,
+                       timer,
+                       total_timer.wall_time(),
+                       pcout,
+                       communicator);
   }
 
 
@@ -560,10 +562,7 @@ namespace bsmpm
   Scene::write_checkpoint(const unsigned int step)
   {
     RunSummary so_far = run_summary;
-    for (const auto &[name, seconds] :
-         timer.get_summary_data(TimerOutput::total_wall_time))
-      so_far.timing[name] += seconds;
-    so_far.timing["total"] += total_timer.wall_time();
+    so_far.add_timing(timer, total_timer.wall_time());
     TimerOutput::Scope t(timer, "checkpoint");
     checkpoint.write(step,
                      grid,
@@ -571,46 +570,5 @@ namespace bsmpm
                      so_far,
                      output,
                      assembly->weak_cells_of_last_matrix());
-  }
-
-
-
-  void
-  Scene::finish()
-  {
-    for (const auto &[name, seconds] :
-         timer.get_summary_data(TimerOutput::total_wall_time))
-      run_summary.timing[name] += seconds; // a resumed run adds its part
-    run_summary.timing["total"] += total_timer.wall_time();
-
-    if (pcout.is_active())
-      run_summary.print_results(pcout.get_stream());
-
-    std::map<std::string, double> checked = run_summary.errors;
-    checked.insert(run_summary.quantities.begin(),
-                   run_summary.quantities.end());
-    std::ostringstream verification_log;
-    const auto         failed = verification.check(checked, verification_log);
-    pcout << verification_log.str();
-
-    // The summary is the run's record for scripts: written even when the
-    // ParaView series are off.
-    output.write_root_file("summary.json", [this](std::ostream &out) {
-      run_summary.write_json(out);
-    });
-
-    if (output.print_timing())
-      {
-        if (Utilities::MPI::n_mpi_processes(communicator) == 1)
-          timer.print_summary();
-        else
-          timer.print_wall_time_statistics(communicator);
-      }
-
-    std::string names;
-    for (const auto &name : failed)
-      names += (names.empty() ? "" : ", ") + name;
-    AssertThrow(failed.empty(),
-                ExcMessage("Verification failed for: " + names + "."));
   }
 } // namespace bsmpm

@@ -127,8 +127,6 @@ namespace bsmpm
     evaluate_errors();
     void
     write_checkpoint(const unsigned int step);
-    void
-    finish();
 
     MPI_Comm            communicator;
     ConditionalOStream  pcout;
