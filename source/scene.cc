@@ -1,22 +1,11 @@
-#include <deal.II/base/mpi.h>
-
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
-
-#include <deal.II/numerics/data_out.h>
-
 #include <bsmpm/base/parameter_tools.h>
-#include <bsmpm/io/curve_output.h>
 #include <bsmpm/io/input_checks.h>
-#include <bsmpm/io/point_output.h>
+#include <bsmpm/points/move_diagnosis.h>
 #include <bsmpm/scene.h>
 #include <bsmpm/verification/error_measures.h>
 
+#include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 namespace bsmpm
 {
@@ -29,6 +18,12 @@ namespace bsmpm
     , grid(communicator)
     , points(grid)
     , output(communicator)
+    , step_output(output,
+                  grid,
+                  points,
+                  boundary_curves,
+                  neumann_loads,
+                  implicit_boundary)
     , checkpoint(communicator)
   {}
 
@@ -57,60 +52,12 @@ namespace bsmpm
                       "load steps like every other load.");
     prm.leave_subsection();
 
-    prm.enter_subsection("Reactions");
-    prm.declare_entry("Curves",
-                      "",
-                      Patterns::List(Patterns::Integer(1)),
-                      "Boundary curves (by number) whose supports' force on "
-                      "the body is reported after every load step as "
-                      "quantities curve<k>_force_x and _y (SupportReaction: "
-                      "the nodal force of the supports' terms in the "
-                      "discrete equations, summed; it balances the internal "
-                      "force as the solver integrates it).");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Probe");
-    prm.declare_entry("Point",
-                      "",
-                      Patterns::Anything(),
-                      "Initial position of a zero-volume point that moves "
-                      "with the body and whose displacement is reported as "
-                      "quantities <name>_displacement_x, _y and "
-                      "<name>_deflection (= -displacement_y); empty: none.");
-    prm.declare_entry("Name",
-                      "probe",
-                      Patterns::Anything(),
-                      "Name of the probe.");
-    prm.leave_subsection();
+    SupportReaction::declare_parameters(prm);
+    Probe::declare_parameters(prm);
 
     BackgroundGrid::declare_parameters(prm);
     LinearElasticMaterial::declare_parameters(prm);
-    prm.enter_subsection("Material");
-    prm.declare_entry(
-      "Volumetric strain",
-      "B-bar",
-      Patterns::Selection("B-bar|standard"),
-      "Nonlinear constitutive models: B-bar replaces the volumetric strain "
-      "of every point by the mean over the points of its cell, so that "
-      "isochoric plastic flow does not lock the bilinear grid; standard "
-      "keeps the points' own (a model that stays elastic then gives the "
-      "linear code's results, up to the cut cells' quadrature). Linear "
-      "elasticity always uses the standard strain.");
-    prm.declare_entry(
-      "Kinematics",
-      "small strain",
-      Patterns::Selection("small strain|finite strain"),
-      "small strain: the paper's formulation (strain increments added, "
-      "stress of the small-strain model). finite strain: updated "
-      "Lagrangian, a deformation gradient per point, logarithmic (Hencky) "
-      "elastic strain with the exponential map, Kirchhoff stress, point "
-      "volumes det(F) V0, a pressure that follows the boundary within the "
-      "load step (doc/finite-strain.md). Finite strain always uses Newton "
-      "iterations, also for linear elasticity, and needs plane strain. "
-      "Without boundary curves, a free closed curve round the body region "
-      "is added (Curve 1), so that the cut-cell quadrature integrates the "
-      "cells the moving points fill unevenly.");
-    prm.leave_subsection();
+    ConstitutiveUpdate::declare_parameters(prm);
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
     BoundaryCurves::declare_parameters(prm);
@@ -138,45 +85,21 @@ namespace bsmpm
     gravity      = ParameterTools::get_point(prm, "Gravity");
     prm.leave_subsection();
 
-    prm.enter_subsection("Reactions");
-    reaction_curves.clear();
-    for (const auto &k : Utilities::split_string_list(prm.get("Curves")))
-      reaction_curves.push_back(Utilities::string_to_int(k) - 1);
-    prm.leave_subsection();
-
-    prm.enter_subsection("Probe");
-    has_probe = !Utilities::trim(prm.get("Point")).empty();
-    if (has_probe)
-      probe_position = ParameterTools::get_point(prm, "Point");
-    probe_name = prm.get("Name");
-    prm.leave_subsection();
+    reactions.parse_parameters(prm);
+    probe.parse_parameters(prm);
 
     grid.parse_parameters(prm);
     material.parse_parameters(prm);
     constitutive_model = create_constitutive_model(prm);
-    prm.enter_subsection("Material");
-    const bool b_bar         = prm.get("Volumetric strain") == "B-bar";
-    const bool finite_strain = prm.get("Kinematics") == "finite strain";
-    prm.leave_subsection();
-    AssertThrow(!finite_strain || material.model() ==
-                                    LinearElasticMaterial::Model::plane_strain,
-                ExcMessage("Material/Kinematics = finite strain needs "
-                           "'Model = plane strain': in plane stress the "
-                           "thickness stretch would be a further unknown."));
-    constitutive_update.reset();
-    if (!constitutive_model->is_linear() || finite_strain)
-      constitutive_update = std::make_unique<ConstitutiveUpdate>(
-        *constitutive_model,
-        b_bar && !constitutive_model->is_linear(),
-        finite_strain ? ConstitutiveUpdate::Kinematics::finite_strain :
-                        ConstitutiveUpdate::Kinematics::small_strain);
+    constitutive_update =
+      ConstitutiveUpdate::create(prm, *constitutive_model, material);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
     if (this->finite_strain())
-      enclose_body_region(prm);
+      BoundaryCurves::enclose_body_region(prm, region, grid.min_cell_size());
     boundary_curves.parse_parameters(prm);
     neumann_loads.parse_parameters(prm);
     implicit_boundary.parse_parameters(prm);
@@ -199,8 +122,8 @@ namespace bsmpm
     {
       TimerOutput::Scope                            t(timer, "setup: checks");
       std::vector<std::pair<std::string, Point<2>>> named;
-      if (has_probe)
-        named.emplace_back("Probe/Point", probe_position);
+      if (probe.enabled())
+        named.emplace_back("Probe/Point", probe.position());
       InputChecks::check(grid, region, layout, boundary_curves, named);
     }
     {
@@ -219,11 +142,8 @@ namespace bsmpm
       std::vector<types::particle_index> tracked;
       if (!boundary_curves.empty())
         tracked = boundary_curves.create_points(points, region);
-      if (has_probe)
-        {
-          probe_slot = tracked.size();
-          tracked.push_back(points.add_tracking_points({probe_position})[0]);
-        }
+      if (probe.enabled())
+        probe.add_to(points, tracked);
       if (!tracked.empty())
         {
           points.track(tracked);
@@ -239,7 +159,7 @@ namespace bsmpm
         }
       cut_cell_quadrature.initialize(boundary_curves);
     }
-    check_supports();
+    InputChecks::check_supports(grid, boundary_curves);
     {
       TimerOutput::Scope t(timer, "setup: system");
       assembly = std::make_unique<SystemAssembly>(
@@ -254,7 +174,7 @@ namespace bsmpm
                               gravity},
         timer);
       assembly->setup();
-      assembly->keep_support_terms(reaction_curves);
+      assembly->keep_support_terms(reactions.curves());
       if (constitutive_update)
         {
           assembly->leave_material_to_points(&points);
@@ -264,6 +184,15 @@ namespace bsmpm
           constitutive_update->use_quadrature_weights(
             cut_cell_quadrature.active());
         }
+      increment_solver = std::make_unique<IncrementSolver>(
+        IncrementSolver::Parts{grid,
+                               *assembly,
+                               linear_solver,
+                               newton,
+                               points,
+                               boundary_curves,
+                               constitutive_update.get()},
+        timer);
       increment.reinit(grid.locally_owned_dofs(),
                        grid.locally_relevant_dofs(),
                        communicator);
@@ -277,65 +206,6 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
-  }
-
-
-
-  void
-  Scene::enclose_body_region(ParameterHandler &prm) const
-  {
-    // Points that move across cells leave full cells with uneven point
-    // sets and partly filled cells at the surface: integrated by the points
-    // alone, the stress of a column compressed by 38 % did not converge
-    // under refinement (L2_u 8.3e-2, 7.5e-2, 8.0e-2 for h = 0.5 .. 0.125).
-    // A closed curve round the body lets the cut-cell quadrature integrate
-    // those cells consistently (1.2e-3, 2.3e-4, 9.1e-5; doc/finite-strain.md).
-    prm.enter_subsection("Boundary curves");
-    for (unsigned int c = 1; c <= BoundaryCurves::max_curves; ++c)
-      {
-        prm.enter_subsection("Curve " + std::to_string(c));
-        const bool used = prm.get("Points") != "none";
-        prm.leave_subsection();
-        if (used)
-          {
-            prm.leave_subsection();
-            return;
-          }
-      }
-    // Tracking points about a cell apart on the longest side.
-    double longest = 0;
-    for (const auto &name : region.boundary_part_names())
-      {
-        const auto points = region.boundary_points(name, 129).points;
-        double     length = 0;
-        for (unsigned int i = 1; i < points.size(); ++i)
-          length += points[i].distance(points[i - 1]);
-        longest = std::max(longest, length);
-      }
-    const unsigned int n = std::max<unsigned int>(
-      2, std::ceil(longest / grid.min_cell_size() - 1e-9) + 1);
-    prm.enter_subsection("Curve 1");
-    prm.set("Points", "region edge");
-    prm.set("Edge", "boundary");
-    prm.set("Number of points", std::to_string(n));
-    prm.leave_subsection();
-    prm.leave_subsection();
-  }
-
-
-
-  void
-  Scene::check_supports() const
-  {
-    const bool curve_supports =
-      boundary_curves.has_supports(
-        BoundaryCurve::DirichletMethod::implicit_boundary) ||
-      boundary_curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
-    AssertThrow(grid.has_face_conditions() || curve_supports,
-                ExcMessage("The body has no support at all: no grid face "
-                           "condition and no fixed, roller or displacement "
-                           "condition on a boundary curve. Its stiffness "
-                           "cannot resist rigid motion; add a support."));
   }
 
 
@@ -369,83 +239,6 @@ namespace bsmpm
         for (const auto &[name, count] : cut_cell_quadrature.statistics())
           run_summary.quantities[name] = count;
       }
-  }
-
-
-
-  std::vector<double>
-  Scene::support_qualities() const
-  {
-    return GhostPenalty::cell_qualities(
-      grid,
-      cell_moments,
-      assembly->constraints(),
-      constitutive_update ? constitutive_update->support_stiffness_ratios() :
-                            nullptr);
-  }
-
-
-
-  std::vector<double>
-  Scene::fill_fractions() const
-  {
-    std::vector<double> fraction(grid.triangulation().n_active_cells(), 0.);
-    const double        area = grid.cell_size()[0] * grid.cell_size()[1];
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int c = cell->active_cell_index();
-          fraction[c] =
-            cut_cell_quadrature.active() ?
-              cut_cell_quadrature.geometry().fraction(
-                grid.cell_index(cell->center())) :
-              (cell_moments.empty() ? 0. : cell_moments[c].v / area);
-        }
-    return fraction;
-  }
-
-
-
-  LinearSolver::Report
-  Scene::solve(const unsigned int step)
-  {
-    TimerOutput::Scope t(timer, "solve");
-    check_loads_finite(step);
-    TrilinosWrappers::MPI::Vector solution(grid.locally_owned_dofs(),
-                                           communicator);
-    const auto report = linear_solver.solve(assembly->matrix(),
-                                            solution,
-                                            assembly->rhs(),
-                                            grid.dof_handler());
-    assembly->constraints().distribute(solution);
-    AssertThrow(std::isfinite(solution.l2_norm()),
-                ExcMessage("The linear solver returned a displacement that is "
-                           "not finite in load step " +
-                           std::to_string(step) +
-                           " although the loads are finite: the system is "
-                           "singular (a body that is not held against rigid "
-                           "motion, or cells without stabilisation: Ghost "
-                           "penalty/Enable)."));
-
-    for (const auto i : grid.locally_owned_dofs())
-      increment(i) = solution(i);
-    increment.update_ghost_values();
-    return report;
-  }
-
-
-
-  void
-  Scene::check_loads_finite(const unsigned int step) const
-  {
-    // A load that is not finite (an expression dividing by zero, a density
-    // or gravity of inf): say so before the solver turns it into NaN
-    // displacements.
-    AssertThrow(std::isfinite(assembly->rhs().l2_norm()),
-                ExcMessage("The loads of load step " + std::to_string(step) +
-                           " are not finite (NaN or inf): check the "
-                           "tractions, prescribed displacements, density and "
-                           "gravity of the scene."));
   }
 
 
@@ -489,60 +282,12 @@ namespace bsmpm
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
       AssertThrow(false,
-                  ExcMessage(std::to_string(report.n_left_grid) +
-                             " material point(s) left the background grid "
-                             "in load step " +
-                             std::to_string(step) + ", one of them to " +
-                             [&] {
-                               std::ostringstream p;
-                               p.precision(6);
-                               p << '(' << report.example[0] << ", "
-                                 << report.example[1] << "). ";
-                               return p.str();
-                             }() +
-                             diagnose(report) +
-                             " The output of the previous step is intact."));
-  }
-
-
-
-  std::string
-  Scene::diagnose(const MaterialPoints::MoveReport &report) const
-  {
-    std::ostringstream cause;
-    cause.precision(3);
-    const double h = grid.min_cell_size();
-    if (report.n_non_finite > 0)
-      cause << "The displacements of " << report.n_non_finite
-            << " point(s) are not finite (NaN or inf): a parameter or an "
-               "expression of the scene gives a non-finite value.";
-    else if (report.example_quality >= 0 &&
-             report.example_quality < ghost_penalty.quality_threshold())
-      cause << "The point came from a poorly filled cell (support quality "
-            << report.example_quality << ", below the stabilisation threshold "
-            << ghost_penalty.quality_threshold()
-            << "): its material holds the cell's DoFs by almost nothing. "
-            << (ghost_penalty.enabled() ?
-                  "Raise Ghost penalty/Penalty, or use more points per cell." :
-                  "Enable the stabilisation (Ghost penalty/Enable = true).");
-    else if (report.max_increment >
-             100 * grid.lower_left().distance(grid.upper_right()))
-      cause << "The loads are far too large for the material: the largest "
-               "displacement increment of a point is "
-            << report.max_increment
-            << " m, far beyond the grid. Check the magnitudes of the loads "
-               "(tractions, pressure, density and gravity) against the "
-               "moduli.";
-    else if (report.max_increment > 0.5 * h)
-      cause << "The load step is too large: the largest displacement "
-               "increment of a point is "
-            << report.max_increment << " m, " << report.max_increment / h
-            << " cells, where small-strain MPM needs increments well below "
-               "a cell. Use more load steps (Loading/Load steps).";
-    else
-      cause << "The body reaches the edge of the grid: enlarge the grid "
-               "(Background grid).";
-    return cause.str();
+                  ExcMessage(
+                    MoveDiagnosis::message(report,
+                                           step,
+                                           grid,
+                                           ghost_penalty.quality_threshold(),
+                                           ghost_penalty.enabled())));
   }
 
 
@@ -562,83 +307,17 @@ namespace bsmpm
   void
   Scene::write_output(const unsigned int step, const double load_factor)
   {
-    TimerOutput::Scope t(timer, "output");
-
-    DataOut<2> grid_out;
-    grid_out.attach_dof_handler(grid.dof_handler());
-    std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector_field(2, DataComponentInterpretation::component_is_part_of_vector);
-    grid_out.add_data_vector(increment,
-                             std::vector<std::string>(2,
-                                                      "displacement_increment"),
-                             DataOut<2>::type_dof_data,
-                             vector_field);
-    const std::vector<double> fraction = fill_fractions();
-    Vector<float>             fill(fraction.begin(), fraction.end());
-    Vector<float>             subdomain(grid.triangulation().n_active_cells());
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        subdomain[cell->active_cell_index()] = cell->subdomain_id();
-    grid_out.add_data_vector(fill, "material_fraction");
-    const std::vector<double> qualities =
-      cell_moments.empty() ? std::vector<double>(fraction.size()) :
-                             support_qualities();
-    Vector<float> quality(qualities.begin(), qualities.end());
-    for (auto &q : quality)
-      q = std::max(q, 0.f);
-    grid_out.add_data_vector(quality, "support_quality");
-    grid_out.add_data_vector(subdomain, "subdomain");
-    grid_out.build_patches();
-    grid_out.set_flags(output.vtk_flags());
-    output.write_series("grid", step, load_factor, grid_out);
-
-    const PointOutput points_out(points, output.vtk_flags());
-    output.write_series(
-      "points",
-      step,
-      load_factor,
-      [&](std::ostream &out) { points_out.write_vtu(out); },
-      [&](std::ostream &out, const std::vector<std::string> &pieces) {
-        points_out.write_pvtu_record(out, pieces);
-      });
-
-    if (!boundary_curves.empty())
-      {
-        // Gauss points live where their cells do: gather them for the file.
-        std::vector<double> local;
-        for (const auto &g : neumann_loads.quadrature_points())
-          local.insert(local.end(),
-                       {g.position[0],
-                        g.position[1],
-                        g.traction[0],
-                        g.traction[1],
-                        g.weight});
-        std::vector<NeumannLoads::QuadraturePoint> gauss;
-        for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
-          for (std::size_t i = 0; i + 4 < part.size(); i += 5)
-            gauss.push_back({Point<2>(part[i], part[i + 1]),
-                             Tensor<1, 2>({part[i + 2], part[i + 3]}),
-                             part[i + 4]});
-        local.clear();
-        for (const auto &b : implicit_boundary.band_points())
-          local.insert(local.end(),
-                       {b.position[0], b.position[1], b.d_function, b.weight});
-        std::vector<ImplicitBoundary::BandPoint> band;
-        for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
-          for (std::size_t i = 0; i + 3 < part.size(); i += 4)
-            band.push_back(
-              {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3]});
-        output.write_serial_series(
-          "curves", step, load_factor, [this](std::ostream &out) {
-            CurveOutput::write_curves(out, boundary_curves);
-          });
-        output.write_serial_series(
-          "curve_points", step, load_factor, [&](std::ostream &out) {
-            CurveOutput::write_points(out, boundary_curves, gauss, band);
-          });
-      }
-
-    output.write_collections();
+    TimerOutput::Scope        t(timer, "output");
+    const std::vector<double> fractions =
+      cut_cell_quadrature.fill_fractions(grid, cell_moments);
+    step_output.write(step,
+                      load_factor,
+                      increment,
+                      fractions,
+                      cell_moments.empty() ?
+                        std::vector<double>(fractions.size()) :
+                        assembly->support_qualities(cell_moments,
+                                                    constitutive_update.get()));
   }
 
 
@@ -694,41 +373,7 @@ namespace bsmpm
         record.number      = step;
         record.load_factor = load_factor;
         advance(step, double(step - 1) / n_load_steps, load_factor, record);
-        if (has_probe)
-          {
-            std::vector<Point<2>> positions;
-            std::vector<Voigt>    stresses;
-            points.tracked_states(positions, stresses);
-            const Tensor<1, 2> u = positions[probe_slot] - probe_position;
-            run_summary.quantities[probe_name + "_displacement_x"] = u[0];
-            run_summary.quantities[probe_name + "_displacement_y"] = u[1];
-            run_summary.quantities[probe_name + "_deflection"]     = -u[1];
-            const Voigt &sigma = stresses[probe_slot];
-            run_summary.quantities[probe_name + "_stress_xx"] = sigma[0];
-            run_summary.quantities[probe_name + "_stress_yy"] = sigma[1];
-            run_summary.quantities[probe_name + "_stress_xy"] = sigma[2];
-          }
-        if (!reaction_curves.empty())
-          {
-            TimerOutput::Scope t(timer, "reactions");
-            for (const unsigned int c : reaction_curves)
-              {
-                const Tensor<1, 2> force = SupportReaction::resultant(
-                  grid, assembly->support_forces(c, increment));
-                const std::string name = "curve" + std::to_string(c + 1);
-                run_summary.quantities[name + "_force_x"] = force[0];
-                run_summary.quantities[name + "_force_y"] = force[1];
-              }
-          }
-        if (boundary_curves.has_loads())
-          {
-            const Tensor<1, 2> force = neumann_loads.resultant(communicator);
-            run_summary.quantities["traction_resultant_x"] = force[0];
-            run_summary.quantities["traction_resultant_y"] = force[1];
-          }
-
-        if (constitutive_update)
-          run_summary.quantities["yielded_points"] = record.n_yielded;
+        record_quantities(record);
         record.quantities = run_summary.quantities;
         run_summary.steps.push_back(record);
         if (pcout.is_active())
@@ -742,7 +387,40 @@ namespace bsmpm
 
     if (exact_solution)
       evaluate_errors();
-    finish();
+    run_summary.finish(verification,
+                       output,
+                       timer,
+                       total_timer.wall_time(),
+                       pcout,
+                       communicator);
+  }
+
+
+
+  void
+  Scene::record_quantities(const RunSummary::Step &record)
+  {
+    if (probe.enabled())
+      probe.record(points, run_summary.quantities);
+    if (!reactions.curves().empty())
+      {
+        TimerOutput::Scope t(timer, "reactions");
+        reactions.record(
+          grid,
+          [this](const unsigned int c) {
+            return assembly->support_forces(c, increment);
+          },
+          run_summary.quantities);
+      }
+    if (boundary_curves.has_loads())
+      {
+        const Tensor<1, 2> force = neumann_loads.resultant(communicator);
+        run_summary.quantities["traction_resultant_x"] = force[0];
+        run_summary.quantities["traction_resultant_y"] = force[1];
+      }
+
+    if (constitutive_update)
+      run_summary.quantities["yielded_points"] = record.n_yielded;
   }
 
 
@@ -772,7 +450,8 @@ namespace bsmpm
           implicit_boundary.fits_prescribed_displacement(boundary_curves);
         if (has_prescribed)
           fit_prescribed_displacement(delta);
-        cell_quality = support_qualities();
+        cell_quality =
+          assembly->support_qualities(cell_moments, constitutive_update.get());
         // A Newton failure that cutting the increment does not cure comes
         // from a mechanism that the stabilisation leaves free: perfectly
         // plastic points at their limit, driven by the imbalance that the
@@ -804,54 +483,18 @@ namespace bsmpm
           }
         if (constitutive_update)
           {
-            check_loads_finite(step);
-            constitutive_update->set_body_force((lambda + delta) *
-                                                material.density() * gravity);
-            const auto result = solve_nonlinear(delta, record);
-            if (!result.converged)
+            if (!solve_nonlinear(step, lambda, delta, cuts, record))
               {
-                if (pcout.is_active())
-                  {
-                    std::ostringstream line;
-                    line << "       load " << lambda << " + " << delta << ": "
-                         << result.failure << ", |R_k|/|R_0|" << std::scientific
-                         << std::setprecision(1);
-                    for (const auto &iteration : result.iterations)
-                      line << ' ' << iteration.relative_residual;
-                    pcout << line.str() << '\n';
-                  }
-                AssertThrow(
-                  cuts < newton.max_step_cuts(),
-                  ExcMessage(
-                    "Load step " + std::to_string(step) +
-                    ": the Newton iterations failed (" + result.failure +
-                    ") although the load increment was halved " +
-                    std::to_string(cuts) + " times, to " +
-                    std::to_string(delta) +
-                    " of the load: the body may have reached its limit "
-                    "load, or the increment needs more cuts (Nonlinear "
-                    "solver/Maximum step cuts). The output of the previous "
-                    "step is intact."));
                 ++cuts;
                 delta /= 2;
                 continue;
               }
-            TimerOutput::Scope t(timer, "update points");
-            previous_increment = increment;
-            previous_delta     = delta;
-            record.n_yielded =
-              constitutive_update->commit(points,
-                                          grid,
-                                          assembly->kernel(),
-                                          increment,
-                                          has_prescribed ? &prescribed :
-                                                           nullptr);
           }
         else
           {
-            const auto report        = solve(step);
-            record.solver            = report.method;
-            record.iterations        = report.iterations;
+            const auto report = increment_solver->solve_linear(step, increment);
+            record.solver     = report.method;
+            record.iterations = report.iterations;
             record.refinement_steps  = report.refinement_steps;
             record.relative_residual = report.relative_residual;
           }
@@ -866,97 +509,51 @@ namespace bsmpm
 
 
 
-  NewtonSolver::Result
-  Scene::solve_nonlinear(const double delta, RunSummary::Step &record)
+  bool
+  Scene::solve_nonlinear(const unsigned int step,
+                         const double       lambda,
+                         const double       delta,
+                         const unsigned int cuts,
+                         RunSummary::Step  &record)
   {
-    TrilinosWrappers::MPI::Vector last_correction;
-    // Start from the last converged increment scaled to this one: points
-    // that yielded then are evaluated on the plastic branch from the first
-    // iteration, where a start from zero would see them on the yield surface
-    // with the elastic tangent and overshoot.
-    // Zeroing a ghosted vector leaves it without ghost values: import the
-    // zeros, or the cells next to another process read ghosts it does not
-    // have.
-    increment = 0;
-    increment.update_ghost_values();
-    const auto  *d_a = has_prescribed ? &prescribed : nullptr;
-    const double reference =
-      assembly->newton_system(*constitutive_update, points, increment, d_a);
-    // |R| of the system the assembly holds, that of the start.
-    double start_norm = reference;
-    if (previous_delta > 0 && previous_increment.size() == increment.size())
+    assembly->check_loads_finite(step);
+    constitutive_update->set_body_force((lambda + delta) * material.density() *
+                                        gravity);
+    IncrementSolver::LinearSolves solves;
+    const auto                    result = increment_solver->solve_newton(
+      delta, has_prescribed ? &prescribed : nullptr, increment, solves);
+    if (solves.n_solves > 0)
       {
-        increment.add(delta / previous_delta, previous_increment);
-        assembly->constraints().set_zero(increment);
-        increment.update_ghost_values();
-        // Where the last increment is a poor guess (finite rotations, a
-        // load path that turns), start from zero after all. The residual
-        // weighs the stiff modes most, so a guess that is closer in
-        // displacement may still leave a larger one: only one ten times
-        // larger than that of zero is dropped (cantilever in finite
-        // strain: 26 times in step 3).
-        start_norm =
-          assembly->newton_system(*constitutive_update, points, increment, d_a);
-        if (!(start_norm < 10 * reference))
-          {
-            increment = 0;
-            increment.update_ghost_values();
-            start_norm = -1; // the held system is not that of zero
-          }
+        record.solver            = solves.method;
+        record.relative_residual = solves.relative_residual;
       }
-    record.iterations = 0;
-    const auto result = newton.solve(
-      reference,
-      [&]() {
-        return assembly->newton_system(*constitutive_update,
-                                       points,
-                                       increment,
-                                       d_a);
-      },
-      [&]() {
-        TimerOutput::Scope            t(timer, "solve");
-        TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
-                                                 communicator);
-        // A pressure that follows the boundary within the step (finite
-        // strain) has an unsymmetric load stiffness.
-        const bool symmetric =
-          constitutive_update->symmetric_tangent() &&
-          !(constitutive_update->kinematics() ==
-              ConstitutiveUpdate::Kinematics::finite_strain &&
-            boundary_curves.has_loads());
-        const auto report = linear_solver.solve(assembly->tangent(),
-                                                correction,
-                                                assembly->residual(),
-                                                grid.dof_handler(),
-                                                symmetric);
-        assembly->constraints().distribute(correction);
-        for (const auto i : grid.locally_owned_dofs())
-          increment(i) += correction(i);
-        increment.update_ghost_values();
-        record.solver = report.method;
-        record.iterations += report.iterations;
-        record.refinement_steps += report.refinement_steps;
-        record.relative_residual = report.relative_residual;
-        const double size        = increment.l2_norm();
-        last_correction          = correction;
-        return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
-                              report.iterations);
-      },
-      [&](const double alpha) {
-        // From x + a dx to x + (a - alpha) dx.
-        for (const auto i : grid.locally_owned_dofs())
-          increment(i) -= alpha * last_correction(i);
-        increment.update_ghost_values();
-      },
-      // dx . R(x): the slope of the potential along dx, for the line search.
-      [&]() { return last_correction * assembly->residual(); },
-      start_norm);
+    record.iterations = solves.iterations;
+    record.refinement_steps += solves.refinement_steps;
     for (const auto &iteration : result.iterations)
       {
         record.newton_residuals.push_back(iteration.relative_residual);
         record.newton_corrections.push_back(iteration.relative_correction);
       }
-    return result;
+    if (!result.converged)
+      {
+        newton.report_failure(result,
+                              step,
+                              lambda,
+                              delta,
+                              cuts,
+                              pcout.is_active() ? &pcout.get_stream() :
+                                                  nullptr);
+        return false;
+      }
+    TimerOutput::Scope t(timer, "update points");
+    increment_solver->accept(increment, delta);
+    record.n_yielded =
+      constitutive_update->commit(points,
+                                  grid,
+                                  assembly->kernel(),
+                                  increment,
+                                  has_prescribed ? &prescribed : nullptr);
+    return true;
   }
 
 
@@ -965,10 +562,7 @@ namespace bsmpm
   Scene::write_checkpoint(const unsigned int step)
   {
     RunSummary so_far = run_summary;
-    for (const auto &[name, seconds] :
-         timer.get_summary_data(TimerOutput::total_wall_time))
-      so_far.timing[name] += seconds;
-    so_far.timing["total"] += total_timer.wall_time();
+    so_far.add_timing(timer, total_timer.wall_time());
     TimerOutput::Scope t(timer, "checkpoint");
     checkpoint.write(step,
                      grid,
@@ -976,46 +570,5 @@ namespace bsmpm
                      so_far,
                      output,
                      assembly->weak_cells_of_last_matrix());
-  }
-
-
-
-  void
-  Scene::finish()
-  {
-    for (const auto &[name, seconds] :
-         timer.get_summary_data(TimerOutput::total_wall_time))
-      run_summary.timing[name] += seconds; // a resumed run adds its part
-    run_summary.timing["total"] += total_timer.wall_time();
-
-    if (pcout.is_active())
-      run_summary.print_results(pcout.get_stream());
-
-    std::map<std::string, double> checked = run_summary.errors;
-    checked.insert(run_summary.quantities.begin(),
-                   run_summary.quantities.end());
-    std::ostringstream verification_log;
-    const auto         failed = verification.check(checked, verification_log);
-    pcout << verification_log.str();
-
-    // The summary is the run's record for scripts: written even when the
-    // ParaView series are off.
-    output.write_root_file("summary.json", [this](std::ostream &out) {
-      run_summary.write_json(out);
-    });
-
-    if (output.print_timing())
-      {
-        if (Utilities::MPI::n_mpi_processes(communicator) == 1)
-          timer.print_summary();
-        else
-          timer.print_wall_time_statistics(communicator);
-      }
-
-    std::string names;
-    for (const auto &name : failed)
-      names += (names.empty() ? "" : ", ") + name;
-    AssertThrow(failed.empty(),
-                ExcMessage("Verification failed for: " + names + "."));
   }
 } // namespace bsmpm

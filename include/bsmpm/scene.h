@@ -5,10 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/la_parallel_vector.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
@@ -21,13 +18,16 @@
 #include <bsmpm/io/checkpoint.h>
 #include <bsmpm/io/output_writer.h>
 #include <bsmpm/io/run_summary.h>
+#include <bsmpm/io/step_output.h>
 #include <bsmpm/materials/constitutive_model.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
+#include <bsmpm/points/probe.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/solver/constitutive_update.h>
 #include <bsmpm/solver/cut_cell_quadrature.h>
+#include <bsmpm/solver/increment_solver.h>
 #include <bsmpm/solver/linear_solver.h>
 #include <bsmpm/solver/newton_solver.h>
 #include <bsmpm/solver/system_assembly.h>
@@ -87,30 +87,11 @@ namespace bsmpm
   private:
     void
     setup();
-    /** Throws if nothing holds the body against rigid motion. */
-    /** Finite strain without boundary curves: a free closed curve round
-     * the body region (Curve 1), so that the cut-cell quadrature follows
-     * the moving body. */
-    void
-    enclose_body_region(ParameterHandler &prm) const;
-
-    void
-    check_supports() const;
     void
     fit_prescribed_displacement(const double increment_factor);
     /** Material moments of every cell, plain or by the cut-cell quadrature. */
     void
     compute_cell_moments();
-    /** Fill fraction of every locally owned cell. */
-    std::vector<double>
-    fill_fractions() const;
-    /** Support quality (GhostPenalty) of every locally owned cell. */
-    std::vector<double>
-    support_qualities() const;
-    LinearSolver::Report
-    solve(const unsigned int step);
-    void
-    check_loads_finite(const unsigned int step) const;
     /**
      * Takes the load from factor @p from to @p to: one increment, or more
      * where a nonlinear material's Newton iterations fail and the
@@ -122,26 +103,30 @@ namespace bsmpm
             const double       to,
             RunSummary::Step  &record);
     /** Newton iterations of a nonlinear material for the assembled load
-     * increment; the increment starts from zero. */
-    NewtonSolver::Result
-    solve_nonlinear(const double delta, RunSummary::Step &record);
+     * increment @p delta from @p lambda, cut @p cuts times so far; commits
+     * the points' state if they converge. Returns whether they did. */
+    bool
+    solve_nonlinear(const unsigned int step,
+                    const double       lambda,
+                    const double       delta,
+                    const unsigned int cuts,
+                    RunSummary::Step  &record);
     /** Moves the points by the converged increment of load increment
      * @p delta of load step @p step. */
     void
     move_points(const unsigned int step, const double delta);
-    /** Why points left the grid, from what the step can see. */
-    std::string
-    diagnose(const MaterialPoints::MoveReport &report) const;
     void
     update_curves();
+    /** The probe, support reactions, traction resultant and yielded
+     * points after a load step, into the run's quantities. */
+    void
+    record_quantities(const RunSummary::Step &record);
     void
     write_output(const unsigned int step, const double load_factor);
     void
     evaluate_errors();
     void
     write_checkpoint(const unsigned int step);
-    void
-    finish();
 
     MPI_Comm            communicator;
     ConditionalOStream  pcout;
@@ -165,28 +150,28 @@ namespace bsmpm
              constitutive_update->kinematics() ==
                ConstitutiveUpdate::Kinematics::finite_strain;
     }
-    NewtonSolver                    newton;
-    BodyRegion                      region;
-    MaterialPointLayout             layout;
-    MaterialPoints                  points;
-    BoundaryCurves                  boundary_curves;
-    NeumannLoads                    neumann_loads;
-    ImplicitBoundary                implicit_boundary;
-    NitscheBoundary                 nitsche_boundary;
-    GhostPenalty                    ghost_penalty;
-    CutCellQuadrature               cut_cell_quadrature;
-    LinearSolver                    linear_solver;
-    OutputWriter                    output;
-    Checkpoint                      checkpoint;
-    Verification                    verification;
-    std::unique_ptr<ExactSolution>  exact_solution;
-    std::unique_ptr<SystemAssembly> assembly;
+    NewtonSolver                     newton;
+    BodyRegion                       region;
+    MaterialPointLayout              layout;
+    MaterialPoints                   points;
+    Probe                            probe;
+    BoundaryCurves                   boundary_curves;
+    NeumannLoads                     neumann_loads;
+    ImplicitBoundary                 implicit_boundary;
+    NitscheBoundary                  nitsche_boundary;
+    GhostPenalty                     ghost_penalty;
+    SupportReaction                  reactions;
+    CutCellQuadrature                cut_cell_quadrature;
+    LinearSolver                     linear_solver;
+    OutputWriter                     output;
+    StepOutput                       step_output;
+    Checkpoint                       checkpoint;
+    Verification                     verification;
+    std::unique_ptr<ExactSolution>   exact_solution;
+    std::unique_ptr<SystemAssembly>  assembly;
+    std::unique_ptr<IncrementSolver> increment_solver;
 
     LinearAlgebra::distributed::Vector<double> increment;
-    /** The last converged increment of a nonlinear material and its load
-     * increment: the start of the next Newton iterations. */
-    LinearAlgebra::distributed::Vector<double> previous_increment;
-    double                                     previous_delta = 0;
     /** Whether points moved since they were last sorted into cells. */
     bool points_moved = false;
     /** Nodal values d^a of the prescribed displacement increment (IBM). */
@@ -197,15 +182,6 @@ namespace bsmpm
     std::vector<CellMoments> cell_moments;
     /** Support quality of every locally owned cell in this step. */
     std::vector<double> cell_quality;
-
-    /** Curves (0-based) whose support forces are reported. */
-    std::vector<unsigned int> reaction_curves;
-
-    /** An optional zero-volume point whose displacement is reported. */
-    std::string  probe_name;
-    Point<2>     probe_position;
-    bool         has_probe  = false;
-    unsigned int probe_slot = 0;
 
     RunSummary run_summary;
   };

@@ -145,4 +145,19 @@ namespace bsmpm
                                format(Point<2>(d)) + ". Enlarge the grid."));
       }
   }
+
+
+  void
+  InputChecks::check_supports(const BackgroundGrid &grid,
+                              const BoundaryCurves &curves)
+  {
+    const bool curve_supports =
+      curves.has_supports(BoundaryCurve::DirichletMethod::implicit_boundary) ||
+      curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
+    AssertThrow(grid.has_face_conditions() || curve_supports,
+                ExcMessage("The body has no support at all: no grid face "
+                           "condition and no fixed, roller or displacement "
+                           "condition on a boundary curve. Its stiffness "
+                           "cannot resist rigid motion; add a support."));
+  }
 } // namespace bsmpm

@@ -1,3 +1,5 @@
+#include <deal.II/base/mpi.h>
+
 #include <bsmpm/io/run_summary.h>
 
 #include <cmath>
@@ -164,5 +166,57 @@ namespace bsmpm
     print("errors", errors);
     print("quantities", quantities);
     out << std::defaultfloat;
+  }
+
+
+  void
+  RunSummary::add_timing(const dealii::TimerOutput &timer,
+                         const double               total_seconds)
+  {
+    for (const auto &[name, seconds] :
+         timer.get_summary_data(dealii::TimerOutput::total_wall_time))
+      timing[name] += seconds; // a resumed run adds its part
+    timing["total"] += total_seconds;
+  }
+
+
+
+  void
+  RunSummary::finish(const Verification               &verification,
+                     const OutputWriter               &output,
+                     const dealii::TimerOutput        &timer,
+                     const double                      total_seconds,
+                     const dealii::ConditionalOStream &pcout,
+                     const MPI_Comm                    communicator)
+  {
+    add_timing(timer, total_seconds);
+
+    if (pcout.is_active())
+      print_results(pcout.get_stream());
+
+    std::map<std::string, double> checked = errors;
+    checked.insert(quantities.begin(), quantities.end());
+    std::ostringstream verification_log;
+    const auto         failed = verification.check(checked, verification_log);
+    pcout << verification_log.str();
+
+    // The summary is the run's record for scripts: written even when the
+    // ParaView series are off.
+    output.write_root_file("summary.json",
+                           [this](std::ostream &out) { write_json(out); });
+
+    if (output.print_timing())
+      {
+        if (dealii::Utilities::MPI::n_mpi_processes(communicator) == 1)
+          timer.print_summary();
+        else
+          timer.print_wall_time_statistics(communicator);
+      }
+
+    std::string names;
+    for (const auto &name : failed)
+      names += (names.empty() ? "" : ", ") + name;
+    AssertThrow(failed.empty(),
+                dealii::ExcMessage("Verification failed for: " + names + "."));
   }
 } // namespace bsmpm

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace bsmpm
 {
@@ -124,6 +125,66 @@ namespace bsmpm
     const auto inverse_of = [](const double x) { return 1. / x; };
     const auto exp_of     = [](const double x) { return std::exp(x); };
   } // namespace
+
+
+
+  void
+  ConstitutiveUpdate::declare_parameters(ParameterHandler &prm)
+  {
+    // The material's own entries are LinearElasticMaterial's and the
+    // constitutive model's: these two choose how the points integrate it.
+    prm.enter_subsection("Material");
+    prm.declare_entry(
+      "Volumetric strain",
+      "B-bar",
+      Patterns::Selection("B-bar|standard"),
+      "Nonlinear constitutive models: B-bar replaces the volumetric strain "
+      "of every point by the mean over the points of its cell, so that "
+      "isochoric plastic flow does not lock the bilinear grid; standard "
+      "keeps the points' own (a model that stays elastic then gives the "
+      "linear code's results, up to the cut cells' quadrature). Linear "
+      "elasticity always uses the standard strain.");
+    prm.declare_entry(
+      "Kinematics",
+      "small strain",
+      Patterns::Selection("small strain|finite strain"),
+      "small strain: the paper's formulation (strain increments added, "
+      "stress of the small-strain model). finite strain: updated "
+      "Lagrangian, a deformation gradient per point, logarithmic (Hencky) "
+      "elastic strain with the exponential map, Kirchhoff stress, point "
+      "volumes det(F) V0, a pressure that follows the boundary within the "
+      "load step (doc/finite-strain.md). Finite strain always uses Newton "
+      "iterations, also for linear elasticity, and needs plane strain. "
+      "Without boundary curves, a free closed curve round the body region "
+      "is added (Curve 1), so that the cut-cell quadrature integrates the "
+      "cells the moving points fill unevenly.");
+    prm.leave_subsection();
+  }
+
+
+
+  std::unique_ptr<ConstitutiveUpdate>
+  ConstitutiveUpdate::create(ParameterHandler            &prm,
+                             const ConstitutiveModel     &model,
+                             const LinearElasticMaterial &material)
+  {
+    prm.enter_subsection("Material");
+    const bool b_bar         = prm.get("Volumetric strain") == "B-bar";
+    const bool finite_strain = prm.get("Kinematics") == "finite strain";
+    prm.leave_subsection();
+    AssertThrow(!finite_strain || material.model() ==
+                                    LinearElasticMaterial::Model::plane_strain,
+                ExcMessage("Material/Kinematics = finite strain needs "
+                           "'Model = plane strain': in plane stress the "
+                           "thickness stretch would be a further unknown."));
+    if (!model.is_linear() || finite_strain)
+      return std::make_unique<ConstitutiveUpdate>(model,
+                                                  b_bar && !model.is_linear(),
+                                                  finite_strain ?
+                                                    Kinematics::finite_strain :
+                                                    Kinematics::small_strain);
+    return nullptr;
+  }
 
 
 

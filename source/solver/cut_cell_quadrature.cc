@@ -301,4 +301,23 @@ namespace bsmpm
     counts["outside_body_cells"]  = Utilities::MPI::sum(n_outside, comm);
     counts["full_cells_fitted"]   = Utilities::MPI::sum(n_full_fit, comm);
   }
+
+
+  std::vector<double>
+  CutCellQuadrature::fill_fractions(
+    const BackgroundGrid           &grid,
+    const std::vector<CellMoments> &moments) const
+  {
+    std::vector<double> fraction(grid.triangulation().n_active_cells(), 0.);
+    const double        area = grid.cell_size()[0] * grid.cell_size()[1];
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int c = cell->active_cell_index();
+          fraction[c]          = active() ?
+                                   geometry().fraction(grid.cell_index(cell->center())) :
+                                   (moments.empty() ? 0. : moments[c].v / area);
+        }
+    return fraction;
+  }
 } // namespace bsmpm

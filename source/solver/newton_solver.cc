@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -158,5 +160,36 @@ namespace bsmpm
           }
         result.iterations.push_back(iteration);
       }
+  }
+
+
+  void
+  NewtonSolver::report_failure(const Result      &result,
+                               const unsigned int step,
+                               const double       lambda,
+                               const double       delta,
+                               const unsigned int cuts,
+                               std::ostream      *log) const
+  {
+    if (log)
+      {
+        std::ostringstream line;
+        line << "       load " << lambda << " + " << delta << ": "
+             << result.failure << ", |R_k|/|R_0|" << std::scientific
+             << std::setprecision(1);
+        for (const auto &iteration : result.iterations)
+          line << ' ' << iteration.relative_residual;
+        *log << line.str() << '\n';
+      }
+    AssertThrow(cuts < max_step_cuts(),
+                ExcMessage("Load step " + std::to_string(step) +
+                           ": the Newton iterations failed (" + result.failure +
+                           ") although the load increment was halved " +
+                           std::to_string(cuts) + " times, to " +
+                           std::to_string(delta) +
+                           " of the load: the body may have reached its "
+                           "limit load, or the increment needs more cuts "
+                           "(Nonlinear solver/Maximum step cuts). The output "
+                           "of the previous step is intact."));
   }
 } // namespace bsmpm

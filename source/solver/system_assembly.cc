@@ -8,7 +8,9 @@
 #include <bsmpm/solver/system_assembly.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
+#include <string>
 
 namespace bsmpm
 {
@@ -460,5 +462,33 @@ namespace bsmpm
     newton_residual -= internal_force;
     yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
     return newton_residual.l2_norm();
+  }
+
+
+  std::vector<double>
+  SystemAssembly::support_qualities(const std::vector<CellMoments> &moments,
+                                    const ConstitutiveUpdate *update) const
+  {
+    return GhostPenalty::cell_qualities(parts.grid,
+                                        moments,
+                                        constraints(),
+                                        update ?
+                                          update->support_stiffness_ratios() :
+                                          nullptr);
+  }
+
+
+
+  void
+  SystemAssembly::check_loads_finite(const unsigned int step) const
+  {
+    // A load that is not finite (an expression dividing by zero, a density
+    // or gravity of inf): say so before the solver turns it into NaN
+    // displacements.
+    AssertThrow(std::isfinite(rhs().l2_norm()),
+                ExcMessage("The loads of load step " + std::to_string(step) +
+                           " are not finite (NaN or inf): check the "
+                           "tractions, prescribed displacements, density and "
+                           "gravity of the scene."));
   }
 } // namespace bsmpm

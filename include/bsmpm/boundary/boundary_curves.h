@@ -224,6 +224,16 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /** Where @p prm defines no curve: sets Curve 1 to a free closed curve
+     * round the boundary of @p region, with tracking points about
+     * @p cell_size apart on its longest part (finite strain: the cut-cell
+     * quadrature then follows the moving body). Call before
+     * parse_parameters(). */
+    static void
+    enclose_body_region(ParameterHandler &prm,
+                        const BodyRegion &region,
+                        const double      cell_size);
+
     bool
     empty() const
     {

@@ -1,11 +1,17 @@
 #ifndef bsmpm_support_reaction_h
 #define bsmpm_support_reaction_h
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/geometry/background_grid.h>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace bsmpm
 {
@@ -29,6 +35,32 @@ namespace bsmpm
   class SupportReaction
   {
   public:
+    /** Section "Reactions": which curves' reactions are reported. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Curves (0-based) whose support forces are reported. */
+    const std::vector<unsigned int> &
+    curves() const
+    {
+      return reported_curves;
+    }
+
+    /**
+     * Sets the quantities curve<k>_force_x and _y in @p quantities for
+     * every reported curve k, from the nodal forces that
+     * @p support_forces(curve) gives (SystemAssembly::support_forces()).
+     */
+    void
+    record(
+      const BackgroundGrid &grid,
+      const std::function<TrilinosWrappers::MPI::Vector(const unsigned int)>
+                                    &support_forces,
+      std::map<std::string, double> &quantities) const;
+
     /**
      * The sum over all processes of the x and y components of the nodal
      * forces @p support_forces (locally owned DoFs of @p grid).
@@ -36,6 +68,9 @@ namespace bsmpm
     static Tensor<1, 2>
     resultant(const BackgroundGrid                &grid,
               const TrilinosWrappers::MPI::Vector &support_forces);
+
+  private:
+    std::vector<unsigned int> reported_curves;
   };
 } // namespace bsmpm
 

@@ -63,6 +63,11 @@ namespace bsmpm
           const BoundaryCurves                                &curves,
           const std::vector<std::pair<std::string, Point<2>>> &named_points);
 
+    /** Throws if nothing holds the body against rigid motion: no face
+     * condition of @p grid and no support on @p curves. */
+    static void
+    check_supports(const BackgroundGrid &grid, const BoundaryCurves &curves);
+
     /** MemAvailable of /proc/meminfo in bytes, or 0 if unknown. */
     static double
     available_memory();

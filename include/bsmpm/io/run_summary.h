@@ -1,6 +1,12 @@
 #ifndef bsmpm_run_summary_h
 #define bsmpm_run_summary_h
 
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <bsmpm/io/output_writer.h>
+#include <bsmpm/verification/verification.h>
+
 #include <map>
 #include <ostream>
 #include <string>
@@ -64,6 +70,25 @@ namespace bsmpm
     /** Errors and quantities, one per line, six significant digits. */
     void
     print_results(std::ostream &out) const;
+
+    /** Adds the wall time of every section of @p timer and @p total_seconds
+     * as "total" to the timing (a resumed run adds its part). */
+    void
+    add_timing(const dealii::TimerOutput &timer, const double total_seconds);
+
+    /**
+     * The end of a run: adds the timing, prints the results and the
+     * checks of @p verification against the errors and quantities, writes
+     * summary.json through @p output, prints @p timer's sections if
+     * Output asks for them, and throws if a check failed.
+     */
+    void
+    finish(const Verification               &verification,
+           const OutputWriter               &output,
+           const dealii::TimerOutput        &timer,
+           const double                      total_seconds,
+           const dealii::ConditionalOStream &pcout,
+           const MPI_Comm                    communicator);
   };
 } // namespace bsmpm
 

@@ -1,6 +1,8 @@
 #ifndef bsmpm_constitutive_update_h
 #define bsmpm_constitutive_update_h
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -8,8 +10,11 @@
 
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
+
+#include <memory>
 
 namespace bsmpm
 {
@@ -48,6 +53,22 @@ namespace bsmpm
   class ConstitutiveUpdate
   {
   public:
+    /** The entries "Volumetric strain" and "Kinematics" of section
+     * "Material". */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The update that @p model needs with the kinematics and volumetric
+     * strain of section "Material": null for a linear model in small
+     * strain, which the linear system integrates itself. Throws if finite
+     * strain is asked of a @p material that is not in plane strain.
+     */
+    static std::unique_ptr<ConstitutiveUpdate>
+    create(ParameterHandler            &prm,
+           const ConstitutiveModel     &model,
+           const LinearElasticMaterial &material);
+
     enum class Kinematics
     {
       small_strain,

@@ -94,6 +94,16 @@ namespace bsmpm
                          const BackgroundGrid     &grid,
                          std::vector<CellMoments> &moments);
 
+    /**
+     * The fraction of every locally owned cell (by active_cell_index()) that
+     * the body fills: from the geometry where the cut cells are integrated
+     * by fitted weights, else the points' volume in @p moments over the
+     * cell's area (0 for every cell while @p moments is empty).
+     */
+    std::vector<double>
+    fill_fractions(const BackgroundGrid           &grid,
+                   const std::vector<CellMoments> &moments) const;
+
     /** Counts of the last correct_cell_moments() over all processes: cut
      * cells, cells fitted with 6, 3, 1 moments, cut cells without points,
      * cells with points that the geometry finds empty. */

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,21 @@ namespace bsmpm
           const std::function<void(const double)>                &step_back,
           const std::function<double()>                          &slope = {},
           const double initial_norm = -1) const;
+
+    /**
+     * After the iterations @p result of the load increment @p delta from
+     * load factor @p lambda in load step @p step failed, with @p cuts
+     * halvings of the increment so far: writes why and the residuals of
+     * the iterations to @p log (if not null), and throws if the increment
+     * may not be halved again.
+     */
+    void
+    report_failure(const Result      &result,
+                   const unsigned int step,
+                   const double       lambda,
+                   const double       delta,
+                   const unsigned int cuts,
+                   std::ostream      *log) const;
 
     /** How many times a load increment may be halved. */
     unsigned int

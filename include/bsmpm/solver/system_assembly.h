@@ -170,6 +170,21 @@ namespace bsmpm
       const unsigned int                                curve,
       const LinearAlgebra::distributed::Vector<double> &increment) const;
 
+    /**
+     * The support quality (GhostPenalty::cell_qualities()) of every locally
+     * owned cell with the material moments @p moments under the constraints
+     * of the last make_constraints(). With @p update (a nonlinear material)
+     * the stiffness that its points have lost lowers it.
+     */
+    std::vector<double>
+    support_qualities(const std::vector<CellMoments> &moments,
+                      const ConstitutiveUpdate       *update) const;
+
+    /** Throws if the loads of the last assemble() (of load step @p step)
+     * are not finite. */
+    void
+    check_loads_finite(const unsigned int step) const;
+
     /** Locally owned points with volume that yield at the last
      * newton_system(), over all processes. */
     unsigned long long

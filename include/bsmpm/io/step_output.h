@@ -1,0 +1,64 @@
+#ifndef bsmpm_step_output_h
+#define bsmpm_step_output_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/implicit_boundary.h>
+#include <bsmpm/boundary/neumann_loads.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/io/output_writer.h>
+#include <bsmpm/points/material_points.h>
+
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The ParaView files of one load step, written through an OutputWriter:
+   * the series grid (displacement increment, material fraction, support
+   * quality and subdomain of every cell), points and, where the scene has
+   * boundary curves, curves and curve_points (the curves with their
+   * traction Gauss points and support band points).
+   */
+  class StepOutput
+  {
+  public:
+    StepOutput(OutputWriter           &output,
+               const BackgroundGrid   &grid,
+               const MaterialPoints   &points,
+               const BoundaryCurves   &boundary_curves,
+               const NeumannLoads     &neumann_loads,
+               const ImplicitBoundary &implicit_boundary);
+
+    /**
+     * Writes load step @p step at load factor @p load_factor and rewrites
+     * the collections. @p fill_fractions and @p support_qualities: one
+     * value per active cell (those of locally owned cells are written).
+     */
+    void
+    write(const unsigned int                                step,
+          const double                                      load_factor,
+          const LinearAlgebra::distributed::Vector<double> &increment,
+          const std::vector<double>                        &fill_fractions,
+          const std::vector<double> &support_qualities) const;
+
+  private:
+    void
+    write_points(const unsigned int step, const double load_factor) const;
+
+    void
+    write_curves(const unsigned int step, const double load_factor) const;
+
+    OutputWriter           &output;
+    const BackgroundGrid   &grid;
+    const MaterialPoints   &points;
+    const BoundaryCurves   &boundary_curves;
+    const NeumannLoads     &neumann_loads;
+    const ImplicitBoundary &implicit_boundary;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,94 @@
+#ifndef bsmpm_increment_solver_h
+#define bsmpm_increment_solver_h
+
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/points/material_points.h>
+#include <bsmpm/solver/constitutive_update.h>
+#include <bsmpm/solver/linear_solver.h>
+#include <bsmpm/solver/newton_solver.h>
+#include <bsmpm/solver/system_assembly.h>
+
+#include <string>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The displacement increment of one load increment from the system that
+   * SystemAssembly holds: one linear solve for linear elasticity, Newton
+   * iterations (NewtonSolver) for a nonlinear material or finite strain,
+   * started from the last converged increment.
+   */
+  class IncrementSolver
+  {
+  public:
+    struct Parts
+    {
+      const BackgroundGrid &grid;
+      SystemAssembly       &assembly;
+      const LinearSolver   &linear_solver;
+      const NewtonSolver   &newton;
+      const MaterialPoints &points;
+      const BoundaryCurves &boundary_curves;
+      /** Null for linear elasticity in small strain. */
+      const ConstitutiveUpdate *constitutive_update;
+    };
+
+    /** What the linear solves of Newton iterations did: the method and
+     * relative residual of the last, the iterations and refinement steps
+     * of all. */
+    struct LinearSolves
+    {
+      unsigned int n_solves = 0;
+      std::string  method;
+      unsigned int iterations        = 0;
+      unsigned int refinement_steps  = 0;
+      double       relative_residual = 0;
+    };
+
+    IncrementSolver(const Parts &parts, TimerOutput &timer);
+
+    /** Solves the assembled linear system of load step @p step into
+     * @p increment (with ghost values); throws if the loads or the
+     * displacement are not finite. */
+    LinearSolver::Report
+    solve_linear(const unsigned int                          step,
+                 LinearAlgebra::distributed::Vector<double> &increment) const;
+
+    /**
+     * Newton iterations of the nonlinear material for the assembled load
+     * increment @p delta into @p increment; @p prescribed: the nodal
+     * values of a prescribed displacement increment, or null. Adds the
+     * figures of the linear solves to @p solves.
+     */
+    NewtonSolver::Result
+    solve_newton(const double                                      delta,
+                 const LinearAlgebra::distributed::Vector<double> *prescribed,
+                 LinearAlgebra::distributed::Vector<double>       &increment,
+                 LinearSolves                                     &solves);
+
+    /** Keeps the converged @p increment of load increment @p delta as the
+     * start of the next Newton iterations. */
+    void
+    accept(const LinearAlgebra::distributed::Vector<double> &increment,
+           const double                                      delta);
+
+  private:
+    Parts        parts;
+    TimerOutput &timer;
+
+    /** The last converged increment of a nonlinear material and its load
+     * increment: the start of the next Newton iterations. */
+    LinearAlgebra::distributed::Vector<double> previous_increment;
+    double                                     previous_delta = 0;
+  };
+} // namespace bsmpm
+
+#endif
