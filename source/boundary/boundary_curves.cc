@@ -136,21 +136,39 @@ namespace bsmpm
       {
         const std::string range = Utilities::trim(text.substr(0, colon));
         const auto        dash  = range.find('-');
+        int               first = 0, last = 0;
         try
           {
             AssertThrow(dash != std::string::npos, ExcInternalError());
-            condition.first_segment =
+            first =
               Utilities::string_to_int(Utilities::trim(range.substr(0, dash)));
-            condition.end_segment =
+            last =
               Utilities::string_to_int(Utilities::trim(range.substr(dash + 1)));
           }
         catch (...)
           {
             AssertThrow(false,
                         ExcMessage(where + ": '" + range +
-                                   "' is not a range of points 'i-j'."));
+                                   "' is not a range of points 'i-j' (two "
+                                   "point indices, counted from 0 along the "
+                                   "chain, before the ':')."));
           }
-        text = Utilities::trim(text.substr(colon + 1));
+        // A negative index would wrap to a huge one (and -1 to 'no range').
+        AssertThrow(first >= 0 && last >= 0,
+                    ExcMessage(where + ": '" + range +
+                               "' is not a range of points 'i-j': point "
+                               "indices count from 0 along the chain and "
+                               "cannot be negative."));
+        AssertThrow(first != last,
+                    ExcMessage(where + ": the range '" + range +
+                               "' starts and ends at point " +
+                               std::to_string(first) +
+                               ", so it covers no segment. A range 'i-j' "
+                               "covers the segments between points i and "
+                               "j != i; for the whole chain give no range."));
+        condition.first_segment = first;
+        condition.end_segment   = last;
+        text                    = Utilities::trim(text.substr(colon + 1));
       }
 
     const auto        space = text.find(' ');
@@ -263,6 +281,48 @@ namespace bsmpm
         problem = message.str();
       }
     return value;
+  }
+
+
+
+  void
+  CurveCondition::check_range(const unsigned int n_points,
+                              const bool         closed,
+                              const std::string &curve_name) const
+  {
+    // A chain of fewer than two points is refused when its spline is built.
+    if (!has_range() || n_points < 2)
+      return;
+    const std::string n    = std::to_string(n_points);
+    const std::string last = std::to_string(n_points - 1);
+    const std::string range =
+      std::to_string(first_segment) + "-" + std::to_string(end_segment);
+    const std::string chain =
+      curve_name + " is " + (closed ? "a closed" : "an open") + " chain of " +
+      n + " points, numbered from 0 to " + last + " along its direction; ";
+    const std::string forms =
+      closed ? "a range 'i-j' covers the segments from point i forward to "
+               "point j and needs i, j in 0 .. " +
+                 last + " (j = " + n +
+                 " is point 0 after a full turn) and i != j; with i > j "
+                 "it wraps round past point " +
+                 last + " and point 0." :
+               "a range 'i-j' covers the segments between points i and j "
+               "and needs 0 <= i < j <= " +
+                 last + ".";
+    AssertThrow(first_segment < n_points &&
+                  end_segment <= (closed ? n_points : n_points - 1),
+                ExcMessage(where + ": the range '" + range +
+                           "' lies beyond the chain: " + chain + forms));
+    AssertThrow(closed || first_segment < end_segment,
+                ExcMessage(where + ": the range '" + range +
+                           "' runs backwards: " + chain + forms +
+                           " Only a closed chain's ranges wrap round (i > "
+                           "j); for the segments between points " +
+                           std::to_string(end_segment) + " and " +
+                           std::to_string(first_segment) + " write '" +
+                           std::to_string(end_segment) + "-" +
+                           std::to_string(first_segment) + "'."));
   }
 
 
@@ -404,9 +464,13 @@ namespace bsmpm
                           "boundary",
                           Patterns::Anything(),
                           "region edge, material points: the part of the "
-                          "body region's boundary (bottom, right, top, left; "
-                          "inner arc, outer arc, start edge, end edge; "
-                          "boundary).");
+                          "body region's boundary: bottom, right, top, left "
+                          "(rectangle, rotated rectangle, rectangle minus "
+                          "disc, in the rectangle's own frame); hole "
+                          "(rectangle minus disc); inner arc, outer arc, "
+                          "start edge, end edge (annulus sector); boundary "
+                          "(any shape: its parts above, but a hole inside "
+                          "the rectangle, as one closed chain).");
         prm.declare_entry("Number of points",
                           "5",
                           Patterns::Integer(2, max_points_per_edge),
@@ -456,9 +520,22 @@ namespace bsmpm
                             "'[i-j:] kind [arguments]': free; pressure <p>; "
                             "traction <tx>; <ty> (expressions of x, y); "
                             "exact traction; fixed; roller; displacement "
-                            "exact; displacement <ux>; <uy>. i-j restricts it "
-                            "to the segments between points i and j; later "
-                            "conditions override earlier ones.");
+                            "exact; displacement <ux>; <uy>; normal "
+                            "displacement exact; normal displacement <un>. "
+                            "i-j restricts it to the segments between points "
+                            "i and j of the chain, its points numbered from 0 "
+                            "along the chain's direction (segment k joins "
+                            "points k and k+1); without it the condition "
+                            "covers the whole chain. On an open chain of N "
+                            "points 0 <= i < j <= N-1. On a closed chain of N "
+                            "points i and j lie in 0 .. N-1 (j may also be N, "
+                            "point 0 after a full turn: '0-N' is the whole "
+                            "loop) and i != j; a range with i > j wraps round: "
+                            "it runs from point i forward past the last point "
+                            "N-1 and point 0 to point j, i.e. segments i .. "
+                            "N-1 (segment N-1 joins point N-1 to point 0) and "
+                            "0 .. j-1. Later conditions override earlier "
+                            "ones.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -624,6 +701,13 @@ namespace bsmpm
   BoundaryCurves::create_initial_curves(const BodyRegion     &region,
                                         const BackgroundGrid &grid)
   {
+    // An edge the region's shape does not have is refused here, naming the
+    // parameter, before any curve is built.
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      if (sources[c].kind == "region edge" ||
+          sources[c].kind == "material points")
+        region.check_edge(sources[c].edge,
+                          "Boundary curves/" + curves[c].name + "/Edge");
     complete_region_boundary(region, grid);
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
@@ -831,19 +915,15 @@ namespace bsmpm
   BoundaryCurves::rebuild(BoundaryCurve &curve) const
   {
     for (const auto &condition : curve.conditions)
-      AssertThrow(condition.end_segment == numbers::invalid_unsigned_int ||
-                    (condition.first_segment <= curve.n_segments() &&
-                     condition.end_segment <= curve.n_segments()),
-                  ExcMessage("Boundary curves/" + curve.name +
-                             ": a condition's range of points lies beyond "
-                             "the chain of " +
-                             std::to_string(curve.positions.size()) +
-                             " points."));
+      condition.check_range(curve.positions.size(), curve.closed, curve.name);
     for (const unsigned int corner : curve.corners)
-      AssertThrow(corner < curve.positions.size(),
-                  ExcMessage("Boundary curves/" + curve.name +
-                             ": corner index " + std::to_string(corner) +
-                             " lies beyond the chain."));
+      AssertThrow(
+        corner < curve.positions.size(),
+        ExcMessage("Boundary curves/" + curve.name + "/Corners: corner index " +
+                   std::to_string(corner) + " lies beyond the chain of " +
+                   std::to_string(curve.positions.size()) +
+                   " points (numbered from 0 to " +
+                   std::to_string(curve.positions.size() - 1) + ")."));
     try
       {
         curve.spline = std::make_unique<BSplineCurve>(curve.positions,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -44,7 +45,7 @@ namespace bsmpm
                       "0",
                       Patterns::Double(),
                       "rotated rectangle: counter-clockwise rotation in "
-                      "degrees.");
+                      "degrees, in [-360, 360].");
     prm.declare_entry("Inner radius",
                       "1",
                       Patterns::Double(0.),
@@ -56,11 +57,13 @@ namespace bsmpm
     prm.declare_entry("Start angle",
                       "0",
                       Patterns::Double(),
-                      "annulus sector: first angle in degrees.");
+                      "annulus sector: first angle in degrees "
+                      "(counter-clockwise from the x axis), in [-360, 360].");
     prm.declare_entry("End angle",
                       "90",
                       Patterns::Double(),
-                      "annulus sector: last angle in degrees.");
+                      "annulus sector: last angle in degrees, in (Start "
+                      "angle, Start angle + 360].");
     prm.declare_entry("Disc center",
                       "0, 0",
                       ParameterTools::point_pattern(),
@@ -71,6 +74,20 @@ namespace bsmpm
                       "rectangle minus disc: radius of the removed disc.");
     prm.leave_subsection();
   }
+
+
+
+  namespace
+  {
+    /** @p x as in a parameter file (shortest form, no trailing zeros). */
+    std::string
+    number(const double x)
+    {
+      std::ostringstream text;
+      text << x;
+      return text.str();
+    }
+  } // namespace
 
 
 
@@ -86,17 +103,21 @@ namespace bsmpm
            Shape::rotated_rectangle :
            (shape == "annulus sector" ? Shape::annulus_sector :
                                         Shape::rectangle_minus_disc));
+    const double angle_degrees = prm.get_double("Angle");
+    const double start_degrees = prm.get_double("Start angle");
+    const double end_degrees   = prm.get_double("End angle");
+
     lower_left           = ParameterTools::get_point(prm, "Lower left corner");
     upper_right          = ParameterTools::get_point(prm, "Upper right corner");
     center               = ParameterTools::get_point(prm, "Center");
     width                = prm.get_double("Width");
     height               = prm.get_double("Height");
-    angle                = prm.get_double("Angle") * numbers::PI / 180.;
+    angle                = angle_degrees * numbers::PI / 180.;
     annulus.center       = center;
     annulus.inner_radius = prm.get_double("Inner radius");
     annulus.outer_radius = prm.get_double("Outer radius");
-    annulus.start_angle  = prm.get_double("Start angle") * numbers::PI / 180.;
-    annulus.end_angle    = prm.get_double("End angle") * numbers::PI / 180.;
+    annulus.start_angle  = start_degrees * numbers::PI / 180.;
+    annulus.end_angle    = end_degrees * numbers::PI / 180.;
     disc_center          = ParameterTools::get_point(prm, "Disc center");
     disc_radius          = prm.get_double("Disc radius");
     prm.leave_subsection();
@@ -130,15 +151,34 @@ namespace bsmpm
           AssertThrow(width > 0 && height > 0,
                       ExcMessage("Body region: width and height of a rotated "
                                  "rectangle must be positive."));
+          ParameterTools::require_finite(angle_degrees, "Body region/Angle");
+          AssertThrow(std::abs(angle_degrees) <= 360,
+                      ExcMessage("Body region/Angle: " + number(angle_degrees) +
+                                 " degrees is more than a full turn; give the "
+                                 "counter-clockwise rotation in degrees in "
+                                 "[-360, 360] (negative: clockwise)."));
           break;
         case Shape::annulus_sector:
+          ParameterTools::require_finite(start_degrees,
+                                         "Body region/Start angle");
+          ParameterTools::require_finite(end_degrees, "Body region/End angle");
+          AssertThrow(std::abs(start_degrees) <= 360,
+                      ExcMessage(
+                        "Body region/Start angle: " + number(start_degrees) +
+                        " degrees is more than a full turn; give it "
+                        "in [-360, 360] degrees, and the End angle "
+                        "in (Start angle, Start angle + 360]."));
           AssertThrow(annulus.outer_radius > annulus.inner_radius &&
-                        annulus.end_angle > annulus.start_angle &&
-                        annulus.end_angle - annulus.start_angle <=
-                          2 * numbers::PI,
+                        end_degrees > start_degrees &&
+                        end_degrees - start_degrees <= 360,
                       ExcMessage("Body region: an annulus sector needs "
                                  "inner radius < outer radius and start angle "
-                                 "< end angle <= start angle + 360."));
+                                 "< end angle <= start angle + 360 (degrees, "
+                                 "counter-clockwise), got radii " +
+                                 number(annulus.inner_radius) + ", " +
+                                 number(annulus.outer_radius) + " and angles " +
+                                 number(start_degrees) + ", " +
+                                 number(end_degrees) + "."));
           break;
       }
   }
@@ -352,6 +392,54 @@ namespace bsmpm
               }
           }
       }
+  }
+
+
+
+  std::string
+  BodyRegion::shape_name() const
+  {
+    switch (region_shape)
+      {
+        case Shape::rectangle:
+          return "rectangle";
+        case Shape::rotated_rectangle:
+          return "rotated rectangle";
+        case Shape::annulus_sector:
+          return "annulus sector";
+        case Shape::rectangle_minus_disc:
+          return "rectangle minus disc";
+      }
+    return "";
+  }
+
+
+
+  void
+  BodyRegion::check_edge(const std::string &edge,
+                         const std::string &where) const
+  {
+    std::vector<std::string> known;
+    for (const auto &name : boundary_part_names())
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        known.push_back(name);
+    // A disc inside the rectangle is a hole of its own (boundary_points()).
+    if (region_shape == Shape::rectangle_minus_disc &&
+        std::find(known.begin(), known.end(), "hole") == known.end())
+      known.push_back("hole");
+    known.push_back("boundary");
+    if (std::find(known.begin(), known.end(), edge) != known.end())
+      return;
+    std::string list;
+    for (unsigned int k = 0; k < known.size(); ++k)
+      list += (k == 0                ? "" :
+               k + 1 == known.size() ? " and " :
+                                       ", ") +
+              ("'" + known[k] + "'");
+    AssertThrow(false,
+                ExcMessage(
+                  where + ": the body region (Shape = " + shape_name() +
+                  ") has no edge '" + edge + "'; it has " + list + "."));
   }
 
 

@@ -79,7 +79,7 @@ namespace bsmpm
                       "0",
                       Patterns::Double(),
                       "Counter-clockwise rotation of the stress frame, in "
-                      "degrees.");
+                      "degrees, in [-360, 360].");
     prm.declare_entry("Fixed point",
                       "0, 0",
                       ParameterTools::point_pattern(),
@@ -144,11 +144,22 @@ namespace bsmpm
     else if (name == "constant stress")
       {
         prm.enter_subsection("Constant stress");
-        const auto s = ParameterTools::get_doubles(prm, "Stress");
-        solution     = std::make_unique<ConstantStress>(
+        const auto   s     = ParameterTools::get_doubles(prm, "Stress");
+        const double angle = prm.get_double("Angle");
+        ParameterTools::require_finite(angle,
+                                       "Exact solution/Constant stress/Angle");
+        std::ostringstream value;
+        value << angle;
+        AssertThrow(std::abs(angle) <= 360,
+                    ExcMessage(
+                      "Exact solution/Constant stress/Angle: " + value.str() +
+                      " degrees is more than a full turn; give the "
+                      "counter-clockwise rotation of the stress frame "
+                      "in degrees in [-360, 360]."));
+        solution = std::make_unique<ConstantStress>(
           material,
           Voigt({s[0], s[1], s[2]}),
-          prm.get_double("Angle") * numbers::PI / 180.,
+          angle * numbers::PI / 180.,
           ParameterTools::get_point(prm, "Fixed point"));
         prm.leave_subsection();
       }

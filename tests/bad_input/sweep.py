@@ -60,6 +60,7 @@ SQUARE45 = os.path.join(PRM, "square-compression-45.prm")
 CYLINDER = os.path.join(PRM, "thick-cylinder.prm")
 PLATE = os.path.join(PRM, "plate-with-hole-neumann.prm")
 CANTILEVER = os.path.join(PRM, "cantilever.prm")
+FOOTING = os.path.join(PRM, "strip-footing.prm")
 
 # Every run of a scene: output into the case's own directory, no ParaView
 # files (unless a case asks for them), no timing table.
@@ -343,6 +344,33 @@ case("malformed_range", "malformed",
 case("range_beyond_chain", "malformed",
      SQUARE_SMALL + s("Boundary curves/Curve 1/Condition 2=50-60: free"),
      "lies beyond the chain")
+# The footing's base is 117-160 on the open chain of the soil surface; its
+# reverse used to be taken as the range that wraps round a closed chain (the
+# rest of the surface), and ran.
+case("range_reversed_on_open_chain", "malformed",
+     [FOOTING] + s("Loading/Load steps=1") +
+     s("Boundary curves/Curve 1/Condition 2=160-117: displacement 0; -0.1"),
+     "Boundary curves/Curve 1/Condition 2: the range '160-117' runs "
+     "backwards: Curve 1 is an open chain of 161 points, numbered from 0 to "
+     "160")
+case("range_equal_endpoints", "malformed",
+     SQUARE_SMALL + s("Boundary curves/Curve 1/Condition 2=2-2: fixed"),
+     "Curve 1/Condition 2: the range '2-2' starts and ends at point 2, so it "
+     "covers no segment")
+case("range_negative_index", "malformed",
+     SQUARE_SMALL + s("Boundary curves/Curve 1/Condition 2=1--1: free"),
+     "Curve 1/Condition 2: '1--1' is not a range of points 'i-j': point "
+     "indices count from 0")
+# Point 4 of a closed chain of 4 points is point 0 again: as an end it is
+# 'after a full turn', as a start it is refused.
+case("range_beyond_closed_chain", "malformed",
+     curve2("0.3, 0.3; 0.7, 0.3; 0.7, 0.7; 0.3, 0.7", closed=True) +
+     s("Boundary curves/Curve 2/Condition 2=4-2: free"),
+     "Curve 2/Condition 2: the range '4-2' lies beyond the chain: Curve 2 is "
+     "a closed chain of 4 points")
+case("range_wrapping_closed_chain", "malformed",
+     curve2("0.3, 0.3; 0.7, 0.3; 0.7, 0.7; 0.3, 0.7", closed=True) +
+     s("Boundary curves/Curve 2/Condition 2=3-1: free"), OK)
 case("malformed_bound", "malformed",
      SQUARE_SMALL + s("Verification/Bounds=R_v < 1"), "must read")
 case("malformed_coordinates", "malformed",
@@ -456,6 +484,34 @@ case("curve_corner_beyond_chain", "curve",
 case("curve_unknown_edge", "curve",
      SQUARE_SMALL + s("Boundary curves/Curve 1/Edge=diagonal"),
      "has no edge 'diagonal'")
+case("edge_of_sector_on_rectangle", "curve",
+     SQUARE_SMALL + s("Boundary curves/Curve 1/Edge=inner arc"),
+     "Boundary curves/Curve 1/Edge: the body region (Shape = rectangle) has "
+     "no edge 'inner arc'; it has 'bottom', 'right', 'top', 'left' and "
+     "'boundary'")
+case("edge_of_rectangle_on_sector", "curve",
+     CYLINDER_SMALL + s("Boundary curves/Curve 2/Edge=top"),
+     "Boundary curves/Curve 2/Edge: the body region (Shape = annulus sector) "
+     "has no edge 'top'")
+
+# --- angles ----------------------------------------------------------------
+# An angle beyond a full turn is refused, not taken modulo 360.
+case("rotation_beyond_full_turn", "angle",
+     SQUARE45_SMALL + s("Body region/Angle=405"),
+     "Body region/Angle: 405 degrees is more than a full turn")
+case("sector_start_beyond_full_turn", "angle",
+     CYLINDER_SMALL + s("Body region/Start angle=720") +
+     s("Body region/End angle=810"),
+     "Body region/Start angle: 720 degrees is more than a full turn")
+case("sector_angles_reversed", "angle",
+     CYLINDER_SMALL + s("Body region/Start angle=90") +
+     s("Body region/End angle=0"),
+     "start angle < end angle <= start angle + 360 (degrees, "
+     "counter-clockwise), got radii 1, 5 and angles 90, 0")
+case("stress_frame_beyond_full_turn", "angle",
+     SQUARE45_SMALL + s("Exact solution/Constant stress/Angle=405"),
+     "Exact solution/Constant stress/Angle: 405 degrees is more than a full "
+     "turn")
 
 # --- command line ----------------------------------------------------------
 case("set_without_argument", "command line", COLUMN_SMALL + ["--set"],

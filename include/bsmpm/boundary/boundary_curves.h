@@ -25,7 +25,11 @@ namespace bsmpm
    *
    * In a parameter file a condition reads "[i-j:] kind [arguments]", where
    * i-j restricts it to the segments between points i and j of the chain
-   * (0-based; the whole chain if absent):
+   * (points numbered from 0 along the chain's direction; the whole chain if
+   * absent). On an open chain of N points 0 <= i < j <= N - 1; on a closed
+   * one i, j lie in 0 .. N - 1 (j may also be N, point 0 after a full turn)
+   * and i != j, and a range with i > j wraps round: segments i .. N - 1 and
+   * 0 .. j - 1 (check_range()). The kinds:
    * - free
    * - pressure <p>: p in Pa on the current curve, along the inward normal
    *   (a follower load);
@@ -82,6 +86,26 @@ namespace bsmpm
     /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
     static CurveCondition
     parse(const std::string &text, const std::string &where);
+
+    /** Whether the condition has a range "i-j:" (without one it covers
+     * the whole chain). */
+    bool
+    has_range() const
+    {
+      return end_segment != numbers::invalid_unsigned_int;
+    }
+
+    /**
+     * Refuses a range that does not fit the chain of @p n_points points
+     * (@p closed or not) of the curve @p curve_name: an index beyond the
+     * chain, or, on an open chain, a reversed range (j < i), which would
+     * otherwise be taken as the range that wraps round a closed chain. The
+     * message names the parameter, the range and the valid forms.
+     */
+    void
+    check_range(const unsigned int n_points,
+                const bool         closed,
+                const std::string &curve_name) const;
 
     /** Whether the condition covers segment @p k of a chain of
      * @p n_segments segments (ranges may wrap round a closed chain). */

@@ -77,6 +77,18 @@ namespace bsmpm
     BoundaryPoints
     boundary_points(const std::string &edge, const unsigned int n_points) const;
 
+    /**
+     * Refuses an @p edge that boundary_points() does not know for this
+     * shape (an edge of another shape, a misspelt one), with a message that
+     * starts with @p where (the parameter) and lists the edges there are.
+     */
+    void
+    check_edge(const std::string &edge, const std::string &where) const;
+
+    /** The shape's name, as in the parameter file. */
+    std::string
+    shape_name() const;
+
     /** Names of the parts of the boundary that boundary_points() knows, in
      * counter-clockwise order round the body (a name twice where a hole
      * splits an edge). */
