@@ -14,6 +14,7 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_Map.h>
 #include <Epetra_RowMatrixTransposer.h>
+#include <Epetra_Vector.h>
 
 #include <algorithm>
 #include <array>
@@ -195,7 +196,10 @@ namespace bsmpm
     /** The coarsest operator with a unit diagonal on unknowns without any
      * coupling (their rows and columns of P^T A P are empty), and its
      * factorisation, or its AMG when it is large. */
-    std::unique_ptr<Epetra_CrsMatrix>                  coarsest;
+    std::unique_ptr<Epetra_CrsMatrix> coarsest;
+    /** The coarsest operator with its diagonal raised by 1e-10 of itself,
+     * where it is singular (setup_smoothers_and_coarse_solver()). */
+    std::unique_ptr<Epetra_CrsMatrix>                  regularised;
     mutable Epetra_LinearProblem                       coarse_problem;
     std::unique_ptr<Amesos_BaseSolver>                 coarse_direct;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> coarse_amg;
@@ -453,6 +457,7 @@ namespace bsmpm
     // is the only one, has its diagonal.
     coarse_direct.reset();
     coarse_amg.reset();
+    regularised.reset();
     const Level            &last = *levels.back();
     const Epetra_CrsMatrix &C    = *last.op.matrix;
     coarsest.reset();
@@ -505,7 +510,34 @@ namespace bsmpm
         coarse_direct.reset(factory.Create("Amesos_Klu", coarse_problem));
         AssertThrow(coarse_direct, ExcMessage("Amesos_Klu is missing."));
         check(coarse_direct->SymbolicFactorization());
-        check(coarse_direct->NumericFactorization());
+        if (coarse_direct->NumericFactorization() != 0)
+          {
+            // P^T A P is singular where two coarse unknowns reach the
+            // coupled fine unknowns only through the same ones with the
+            // same weights: P has two equal columns. The thick cylinder of
+            // issue 24 in its second step: the points moved 1e-5 across
+            // y = 2, so the fine cell [0, h] x [2, 2 + h] gained material;
+            // the roller on x = 0 holds the x unknowns of its left
+            // vertices, and of the new ones only that at (h, 2 + h) is
+            // left, halfway between the coarse vertices (0, 17) and
+            // (1, 17), which reach no other coupled fine unknown. A is
+            // positive definite on the coupled unknowns, so the null space
+            // of P^T A P is that of P: the restricted residual P^T r has
+            // no component in it, and the prolongation maps any component
+            // there to zero. Raising the diagonal by 1e-10 of itself makes
+            // the operator invertible and changes the correction elsewhere
+            // by that fraction.
+            regularised = std::make_unique<Epetra_CrsMatrix>(coarse_matrix);
+            Epetra_Vector diagonal(*last.map);
+            check(regularised->ExtractDiagonalCopy(diagonal));
+            for (int k = 0; k < diagonal.MyLength(); ++k)
+              diagonal[k] *= 1. + 1e-10;
+            check(regularised->ReplaceDiagonalValues(diagonal));
+            coarse_problem.SetOperator(regularised.get());
+            coarse_direct.reset(factory.Create("Amesos_Klu", coarse_problem));
+            check(coarse_direct->SymbolicFactorization());
+            check(coarse_direct->NumericFactorization());
+          }
       }
     else
       {

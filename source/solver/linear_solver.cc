@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <bsmpm/solver/direct_solver.h>
 #include <bsmpm/solver/linear_solver.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <string>
 
 namespace bsmpm
 {
@@ -182,39 +184,43 @@ namespace bsmpm
                              TrilinosWrappers::MPI::Vector        &solution,
                              const TrilinosWrappers::MPI::Vector  &rhs) const
   {
-    Report        report;
-    const double  rhs_norm = rhs.l2_norm();
-    SolverControl control(1, 0);
-    // MUMPS is the fastest direct solver in Debian's Trilinos; fall back
-    // to KLU where it is missing.
-    std::unique_ptr<TrilinosWrappers::SolverDirect> solver;
-    for (const std::string name : {"Amesos_Mumps", "Amesos_Klu"})
+    Report       report;
+    const double rhs_norm = rhs.l2_norm();
+    // MUMPS is the fastest direct solver in Debian's Trilinos; KLU where it
+    // is missing or fails.
+    DirectSolver               direct;
+    const Epetra_CrsMatrix    &A     = matrix.trilinos_matrix();
+    const DirectSolver::Status mumps = direct.factorize(A, "Amesos_Mumps");
+    DirectSolver::Status       klu   = DirectSolver::Status::unavailable;
+    if (mumps == DirectSolver::Status::success)
+      report.method = "direct (MUMPS)";
+    else
       {
-        try
-          {
-            solver = std::make_unique<TrilinosWrappers::SolverDirect>(
-              control,
-              TrilinosWrappers::SolverDirect::AdditionalData(false, name));
-            solver->initialize(matrix);
-            report.method =
-              name == "Amesos_Mumps" ? "direct (MUMPS)" : "direct (KLU)";
-            break;
-          }
-        catch (const ExceptionBase &)
-          {
-            // MUMPS missing, or the factorisation failed: try KLU; if that
-            // fails too, the matrix is singular.
-            AssertThrow(name != "Amesos_Klu", ExcMessage(singular_message));
-          }
+        klu = direct.factorize(A, "Amesos_Klu");
+        if (klu == DirectSolver::Status::success)
+          report.method = "direct (KLU)";
       }
-    try
-      {
-        solver->solve(solution, rhs);
-      }
-    catch (const ExceptionBase &)
-      {
-        AssertThrow(false, ExcMessage(singular_message));
-      }
+    const std::string size = std::to_string(matrix.m());
+    AssertThrow(
+      !report.method.empty(),
+      ExcMessage(
+        mumps == DirectSolver::Status::out_of_memory ?
+          "Linear solver: the direct solver ran out of memory factorising "
+          "the system of " +
+            size +
+            " unknowns (MUMPS, even with 17 times the workspace it "
+            "estimated, and KLU). Use CG (Linear solver/Method = cg amg or "
+            "cg gmg, a fraction of the memory), a coarser grid, or more "
+            "processes or memory." :
+        (mumps == DirectSolver::Status::singular ||
+         klu == DirectSolver::Status::singular) ?
+          std::string(singular_message) :
+          "Linear solver: the direct solver (MUMPS, KLU) could not "
+          "factorise the system of " +
+            size +
+            " unknowns, although it found it neither singular nor too "
+            "large for the memory. Try Linear solver/Method = cg amg."));
+    AssertThrow(direct.solve(solution, rhs), ExcMessage(singular_message));
 
     // Iterative refinement with the same factors: a back-substitution
     // costs little next to the factorisation, and it brings the residual
@@ -229,7 +235,8 @@ namespace bsmpm
         if (norm >= 0.5 * previous || norm <= 1e-15 * rhs_norm)
           break;
         previous = norm;
-        solver->solve(correction, residual);
+        AssertThrow(direct.solve(correction, residual),
+                    ExcMessage(singular_message));
         solution += correction;
         ++report.refinement_steps;
       }
@@ -319,6 +326,7 @@ namespace bsmpm
   LinearSolver::prepare_preconditioner(
     const TrilinosWrappers::SparseMatrix &matrix,
     const DoFHandler<2>                  &dof_handler,
+    const bool                            geometric,
     Report                               &report) const
   {
     // The hierarchy can serve again if it was built on this matrix object
@@ -327,7 +335,6 @@ namespace bsmpm
     // Newton iterations while the same cells are active.
     const std::uint64_t structure =
       reuse == Reuse::none ? 0 : matrix_structure(matrix);
-    const bool geometric = geometric_multigrid(dof_handler);
     const bool same =
       (geometric ? bool(gmg) : bool(amg)) && reuse != Reuse::none &&
       Utilities::MPI::min((amg_matrix == &matrix.trilinos_matrix() &&
@@ -412,12 +419,24 @@ namespace bsmpm
 
 
 
+  namespace
+  {
+    /** Why CG with a multigrid did not give a solution. */
+    struct IterativeFailure
+    {
+      std::string what;
+    };
+  } // namespace
+
+
+
   LinearSolver::Report
-  LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
-                      TrilinosWrappers::MPI::Vector        &solution,
-                      const TrilinosWrappers::MPI::Vector  &rhs,
-                      const DoFHandler<2>                  &dof_handler,
-                      const bool                            symmetric) const
+  LinearSolver::solve_iterative(const TrilinosWrappers::SparseMatrix &matrix,
+                                TrilinosWrappers::MPI::Vector        &solution,
+                                const TrilinosWrappers::MPI::Vector  &rhs,
+                                const DoFHandler<2> &dof_handler,
+                                const bool           symmetric,
+                                const bool           geometric) const
   {
     Report report;
     // CG for symmetric systems; GMRES with the same multigrid for the
@@ -447,9 +466,136 @@ namespace bsmpm
             gmres.solve(matrix, solution, rhs, *amg);
         }
     };
+    const std::string name = geometric ? "GMG" : "AMG";
+    // A preconditioner that cannot be set up or applied (a Trilinos error:
+    // a factorisation that fails, an operator ML cannot coarsen) is a
+    // failure of this method, not of the run.
+    // The decision is taken together: a factorisation's error may be
+    // reported on one process only.
+    const auto prepare = [&]() {
+      bool failed = false;
+      try
+        {
+          prepare_preconditioner(matrix, dof_handler, geometric, report);
+        }
+      catch (const ExceptionBase &)
+        {
+          failed = true;
+        }
+      if (Utilities::MPI::max(failed ? 1 : 0, dof_handler.get_communicator()) ==
+          1)
+        {
+          reset_preconditioner();
+          throw IterativeFailure{"the " + name + " set-up failed"};
+        }
+    };
     const double rhs_norm = rhs.l2_norm();
-    if (rhs_norm == 0.)
+    prepare();
+
+    // The previous solution is the first guess when it leaves a smaller
+    // residual than zero does (consecutive load steps of similar
+    // systems); the stopping test stays relative to ||b||.
+    solution = 0;
+    if (last_solution.size() == solution.size() &&
+        last_solution.locally_owned_elements() ==
+          solution.locally_owned_elements())
       {
+        TrilinosWrappers::MPI::Vector residual(rhs);
+        matrix.vmult(residual, last_solution);
+        residual.sadd(-1., 1., rhs);
+        if (residual.l2_norm() < rhs_norm)
+          solution = last_solution;
+      }
+
+    // In automatic mode CG gets a few hundred iterations: a system that
+    // needs more (a thin IBM band holding both components in cut cells:
+    // 1607 iterations on scene 4b at h = 1/32) is factorised faster.
+    const unsigned int limit  = method == Method::automatic ?
+                                  std::min(max_iterations, 300u) :
+                                  max_iterations;
+    const double       target = relative_tolerance(dof_handler) * rhs_norm;
+    // A reused hierarchy gets twice the iterations of the solve it was
+    // built for; if that is not enough, a new one continues.
+    unsigned int iterations = 0;
+    if (report.reused_preconditioner)
+      {
+        SolverControl control(std::min(limit, 2 * fresh_iterations + 10),
+                              target);
+        bool          replace = false;
+        try
+          {
+            iterate(control);
+            report.iterations = control.last_step();
+          }
+        catch (const SolverControl::NoConvergence &)
+          {
+            iterations = control.last_step();
+            replace    = true;
+          }
+        catch (const ExceptionBase &)
+          {
+            // The kept hierarchy failed to apply: a new one from zero.
+            iterations = control.last_step();
+            replace    = true;
+            solution   = 0;
+          }
+        if (replace)
+          {
+            reset_preconditioner();
+            report.reused_preconditioner = false;
+            prepare();
+          }
+      }
+    if (!report.reused_preconditioner)
+      {
+        SolverControl control(limit - std::min(limit - 1, iterations), target);
+        try
+          {
+            iterate(control);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            reset_preconditioner();
+            last_solution.clear();
+            throw IterativeFailure{"CG + " + name + " did not converge in " +
+                                   std::to_string(iterations + e.last_step) +
+                                   " iterations (residual " +
+                                   std::to_string(e.last_residual / rhs_norm) +
+                                   " of the right-hand side)"};
+          }
+        catch (const ExceptionBase &)
+          {
+            reset_preconditioner();
+            last_solution.clear();
+            throw IterativeFailure{"the " + name + " V-cycle failed"};
+          }
+        report.iterations = iterations + control.last_step();
+        fresh_iterations  = control.last_step();
+      }
+    // A hierarchy that has become much slower than when it was new is
+    // rebuilt for the next solve.
+    else if (report.iterations > (3 * fresh_iterations) / 2 + 2)
+      reset_preconditioner();
+
+    report.method =
+      std::string(symmetric ? "cg" : "gmres") + (geometric ? " gmg" : " amg");
+    last_solution            = solution;
+    report.relative_residual = relative_residual(matrix, solution, rhs);
+    return report;
+  }
+
+
+
+  LinearSolver::Report
+  LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                      TrilinosWrappers::MPI::Vector        &solution,
+                      const TrilinosWrappers::MPI::Vector  &rhs,
+                      const DoFHandler<2>                  &dof_handler,
+                      const bool                            symmetric) const
+  {
+    if (rhs.l2_norm() == 0.)
+      {
+        Report report;
         solution      = 0;
         report.method = "none (zero right-hand side)";
         return report;
@@ -458,103 +604,53 @@ namespace bsmpm
     const bool use_direct = method == Method::direct ||
                             (method == Method::automatic &&
                              (matrix.m() <= automatic_threshold || cg_failed));
-
     if (use_direct)
       return solve_direct(matrix, solution, rhs);
-    else
+
+    bool geometric = geometric_multigrid(dof_handler);
+    // Automatic mode: a matrix of the structure on which the geometric
+    // multigrid failed goes to ML directly (the same decoupled rows make
+    // the same coarse operators), until the structure changes.
+    if (geometric && gmg_failed)
+      geometric =
+        Utilities::MPI::min((gmg_failed_matrix == &matrix.trilinos_matrix() &&
+                             gmg_failed_structure == matrix_structure(matrix)) ?
+                              0 :
+                              1,
+                            dof_handler.get_communicator()) == 1;
+    const bool fell_back = method == Method::automatic && gmg_failed &&
+                           !geometric && geometric_multigrid(dof_handler);
+    if (geometric)
+      gmg_failed = false;
+
+    try
       {
-        prepare_preconditioner(matrix, dof_handler, report);
-        // Which multigrid this solve uses, for the messages below (the
-        // hierarchy itself may be reset before they are written).
-        const bool geometric = geometric_multigrid(dof_handler);
-
-        // The previous solution is the first guess when it leaves a smaller
-        // residual than zero does (consecutive load steps of similar
-        // systems); the stopping test stays relative to ||b||.
-        solution = 0;
-        if (last_solution.size() == solution.size() &&
-            last_solution.locally_owned_elements() ==
-              solution.locally_owned_elements())
-          {
-            TrilinosWrappers::MPI::Vector residual(rhs);
-            matrix.vmult(residual, last_solution);
-            residual.sadd(-1., 1., rhs);
-            if (residual.l2_norm() < rhs_norm)
-              solution = last_solution;
-          }
-
-        // In automatic mode CG gets a few hundred iterations: a system that
-        // needs more (a thin IBM band holding both components in cut cells:
-        // 1607 iterations on scene 4b at h = 1/32) is factorised faster.
-        const unsigned int limit  = method == Method::automatic ?
-                                      std::min(max_iterations, 300u) :
-                                      max_iterations;
-        const double       target = relative_tolerance(dof_handler) * rhs_norm;
-        // A reused hierarchy gets twice the iterations of the solve it was
-        // built for; if that is not enough, a new one continues.
-        unsigned int iterations = 0;
-        if (report.reused_preconditioner)
-          {
-            SolverControl control(std::min(limit, 2 * fresh_iterations + 10),
-                                  target);
-            try
-              {
-                iterate(control);
-                report.iterations = control.last_step();
-              }
-            catch (const SolverControl::NoConvergence &)
-              {
-                iterations = control.last_step();
-                reset_preconditioner();
-                report.reused_preconditioner = false;
-                prepare_preconditioner(matrix, dof_handler, report);
-              }
-          }
-        if (!report.reused_preconditioner)
-          {
-            SolverControl control(limit - std::min(limit - 1, iterations),
-                                  target);
-            try
-              {
-                iterate(control);
-              }
-            catch (const SolverControl::NoConvergence &e)
-              {
-                reset_preconditioner();
-                last_solution.clear();
-                if (method == Method::automatic)
-                  {
-                    // Factorise, now and in the following load steps.
-                    cg_failed     = true;
-                    Report direct = solve_direct(matrix, solution, rhs);
-                    direct.method += ", cg failed";
-                    return direct;
-                  }
-                AssertThrow(false,
-                            ExcMessage(
-                              "Linear solver: CG + " +
-                              std::string(geometric ? "GMG" : "AMG") +
-                              " did not converge in " +
-                              std::to_string(iterations + e.last_step) +
-                              " iterations (residual " +
-                              std::to_string(e.last_residual / rhs_norm) +
-                              " of the right-hand side). The system may "
-                              "be ill-conditioned: try Method = direct."));
-              }
-            report.iterations = iterations + control.last_step();
-            fresh_iterations  = control.last_step();
-          }
-        // A hierarchy that has become much slower than when it was new is
-        // rebuilt for the next solve.
-        else if (report.iterations > (3 * fresh_iterations) / 2 + 2)
-          reset_preconditioner();
-
-        report.method = std::string(symmetric ? "cg" : "gmres") +
-                        (geometric ? " gmg" : " amg");
-        last_solution = solution;
+        Report report = solve_iterative(
+          matrix, solution, rhs, dof_handler, symmetric, geometric);
+        if (fell_back)
+          report.method += ", gmg failed";
+        return report;
       }
-
-    report.relative_residual = relative_residual(matrix, solution, rhs);
-    return report;
+    catch (const IterativeFailure &failure)
+      {
+        AssertThrow(method == Method::automatic,
+                    ExcMessage("Linear solver: " + failure.what +
+                               ". The system may be ill-conditioned: try "
+                               "Method = " +
+                               (geometric ? "cg amg or " : "") + "direct."));
+        if (geometric)
+          {
+            // ML next, for this matrix and every matrix of its structure.
+            gmg_failed           = true;
+            gmg_failed_matrix    = &matrix.trilinos_matrix();
+            gmg_failed_structure = matrix_structure(matrix);
+            return solve(matrix, solution, rhs, dof_handler, symmetric);
+          }
+      }
+    // Factorise, now and in the following load steps.
+    cg_failed     = true;
+    Report direct = solve_direct(matrix, solution, rhs);
+    direct.method += ", cg failed";
+    return direct;
   }
 } // namespace bsmpm

@@ -27,6 +27,15 @@ namespace bsmpm
    * multigrid on the uniform grid (GeometricMultigrid). "automatic" takes the
    * direct solver up to a number of unknowns and CG beyond, with the
    * geometric multigrid where the grid can be coarsened and ML elsewhere.
+   *
+   * In automatic mode a solve does not end the run while a method is left:
+   * if the geometric multigrid cannot be set up or CG with it does not
+   * converge, CG with ML takes over (method "cg amg, gmg failed", for every
+   * solve of a matrix of the same structure); if CG does not converge with
+   * ML either, the direct solver (method "direct (...), cg failed", for
+   * this and every later solve). A failure of the direct solver itself
+   * (a singular system, or too little memory after MUMPS was given more
+   * workspace) ends the run with one message that says what it means.
    */
   class LinearSolver
   {
@@ -86,18 +95,32 @@ namespace bsmpm
     }
 
   private:
-    /** Sparse LU with iterative refinement. */
+    /** Sparse LU with iterative refinement: MUMPS, with more workspace
+     * if it runs short, else KLU. Throws a message (no error numbers of
+     * Trilinos or MUMPS) if neither factorises the matrix. */
     Report
     solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
                  TrilinosWrappers::MPI::Vector        &solution,
                  const TrilinosWrappers::MPI::Vector  &rhs) const;
 
-    /** cg amg, cg gmg: the multigrid preconditioner, kept for later
-     * solves. */
+    /** cg amg, cg gmg: the multigrid preconditioner (geometric or ML),
+     * kept for later solves. */
     void
     prepare_preconditioner(const TrilinosWrappers::SparseMatrix &matrix,
                            const DoFHandler<2>                  &dof_handler,
+                           const bool                            geometric,
                            Report                               &report) const;
+
+    /** CG (GMRES) with the geometric multigrid or ML. Throws
+     * IterativeFailure if the preconditioner cannot be set up or applied,
+     * or the iterations do not converge. */
+    Report
+    solve_iterative(const TrilinosWrappers::SparseMatrix &matrix,
+                    TrilinosWrappers::MPI::Vector        &solution,
+                    const TrilinosWrappers::MPI::Vector  &rhs,
+                    const DoFHandler<2>                  &dof_handler,
+                    const bool                            symmetric,
+                    const bool                            geometric) const;
 
     /** Whether CG takes the geometric multigrid (cg gmg, or automatic on
      * a grid that coarsens at least once) rather than ML. */
@@ -131,8 +154,14 @@ namespace bsmpm
     unsigned int max_refinements     = 3;
     bool         estimate_condition  = false;
     /** Automatic mode: CG did not converge in an earlier load step. */
-    mutable bool cg_failed            = false;
-    unsigned int condition_iterations = 2000;
+    mutable bool cg_failed = false;
+    /** Automatic mode: the geometric multigrid failed (set-up or
+     * iterations) on the matrix object gmg_failed_matrix with the structure
+     * gmg_failed_structure; ML serves matrices of that structure. */
+    mutable bool          gmg_failed           = false;
+    mutable const void   *gmg_failed_matrix    = nullptr;
+    mutable std::uint64_t gmg_failed_structure = 0;
+    unsigned int          condition_iterations = 2000;
 
     /** The AMG hierarchy of the last CG solve, the matrix it was built on
      * and a fingerprint of that matrix's structure (the pattern and the

@@ -1,0 +1,68 @@
+#ifndef bsmpm_direct_solver_h
+#define bsmpm_direct_solver_h
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
+
+#include <memory>
+#include <string>
+
+class Amesos_BaseSolver;
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * A sparse LU factorisation by an Amesos solver (MUMPS or KLU) that says
+   * why it failed instead of passing on the error numbers of Trilinos or
+   * MUMPS, and keeps the solvers' own error lines (Amesos_Mumps writes
+   * "Amesos_Mumps : ERROR" and INFOG to std::cerr at any verbosity) off the
+   * terminal.
+   *
+   * MUMPS sizes its workspace from the estimate of its analysis enlarged
+   * by ICNTL(14) percent (20 by default in Amesos). Where that is too
+   * little for the pivoting of the factorisation (INFOG(1) = -8, -9, -11,
+   * -14, -15, -17 or -20, MUMPS users' guide, "Error diagnostics"; -9 at
+   * 83 k unknowns on two processes, issue 27), the factorisation is
+   * repeated with ICNTL(14) = 100, 400 and 1600. Amesos takes ICNTL(14)
+   * through its parameter list (sublist "mumps"); deal.II 9.4's
+   * TrilinosWrappers::SolverDirect has no parameter for it.
+   */
+  class DirectSolver
+  {
+  public:
+    enum class Status
+    {
+      success,
+      /** The solver is not in this Trilinos. */
+      unavailable,
+      /** Structurally or numerically singular. */
+      singular,
+      /** Not enough memory, even with more workspace. */
+      out_of_memory,
+      other
+    };
+
+    DirectSolver();
+    ~DirectSolver();
+
+    /** Factorises @p matrix (kept by reference until the next call) with
+     * "Amesos_Mumps" or "Amesos_Klu". */
+    Status
+    factorize(const Epetra_CrsMatrix &matrix, const std::string &name);
+
+    /** x = A^-1 b with the factors; false if the solver failed. */
+    bool
+    solve(TrilinosWrappers::MPI::Vector       &x,
+          const TrilinosWrappers::MPI::Vector &b);
+
+  private:
+    Epetra_LinearProblem               problem;
+    std::unique_ptr<Amesos_BaseSolver> solver;
+  };
+} // namespace bsmpm
+
+#endif
