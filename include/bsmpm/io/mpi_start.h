@@ -17,6 +17,12 @@ namespace bsmpm
    * network layer of clusters: the point-to-point layer ob1 alone (0.25 s
    * less at np = 2 there, doc/benchmarks.md). Under another launcher, and
    * with another MPI, nothing is set.
+   *
+   * A serial run also gets a session directory of its own
+   * (OMPI_MCA_orte_top_session_dir = <tmp>/bsmpm-mpi.<host>.<uid>/<pid>):
+   * Open MPI gives every isolated singleton the same one, which each
+   * removes at its end while others may still use it (the reason in
+   * source/io/mpi_start.cc).
    */
   void
   start_mpi_quickly();
