@@ -37,7 +37,9 @@ namespace bsmpm
       "threshold' unknowns, above cg gmg if the grid can be "
       "coarsened at least once (even cell counts, more than "
       "'Multigrid coarse size' unknowns), else cg amg (and "
-      "direct if CG does not converge). Unsymmetric systems take GMRES "
+      "direct if CG does not converge; a multigrid that fails to set up or "
+      "converge hands the solve to cg amg, which says so in the step "
+      "table). Unsymmetric systems take GMRES "
       "with the same preconditioner.");
     prm.declare_entry(
       "Tolerance",
