@@ -1,4 +1,5 @@
 #include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/io/error_report.h>
 #include <bsmpm/io/input_checks.h>
 #include <bsmpm/points/move_diagnosis.h>
 #include <bsmpm/scene.h>
@@ -365,34 +366,47 @@ namespace bsmpm
     if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 
-    points_moved = first_step > 1;
-    for (unsigned int step = first_step; step <= n_load_steps; ++step)
+    points_moved      = first_step > 1;
+    unsigned int step = first_step;
+    try
       {
-        const double     load_factor = double(step) / n_load_steps;
-        RunSummary::Step record;
-        record.number      = step;
-        record.load_factor = load_factor;
-        advance(step, double(step - 1) / n_load_steps, load_factor, record);
-        record_quantities(record);
-        record.quantities = run_summary.quantities;
-        run_summary.steps.push_back(record);
-        if (pcout.is_active())
-          run_summary.print_step(pcout.get_stream(), record);
+        for (; step <= n_load_steps; ++step)
+          {
+            const double     load_factor = double(step) / n_load_steps;
+            RunSummary::Step record;
+            record.number      = step;
+            record.load_factor = load_factor;
+            advance(step, double(step - 1) / n_load_steps, load_factor, record);
+            record_quantities(record);
+            record.quantities = run_summary.quantities;
+            run_summary.record_step(record, output, pcout);
 
-        if (output.writes_step(step, n_load_steps))
-          write_output(step, load_factor);
-        if (checkpoint.writes_step(step, n_load_steps))
-          write_checkpoint(step);
+            if (output.writes_step(step, n_load_steps))
+              write_output(step, load_factor);
+            if (checkpoint.writes_step(step, n_load_steps))
+              write_checkpoint(step);
+          }
+
+        if (exact_solution)
+          evaluate_errors();
+        run_summary.finish(verification,
+                           output,
+                           timer,
+                           total_timer.wall_time(),
+                           pcout,
+                           communicator);
       }
-
-    if (exact_solution)
-      evaluate_errors();
-    run_summary.finish(verification,
-                       output,
-                       timer,
-                       total_timer.wall_time(),
-                       pcout,
-                       communicator);
+    catch (const ExceptionBase &e)
+      {
+        // The record of the steps done survives the error (main reports it).
+        run_summary.record_failure(step, message_of(e), output);
+        throw;
+      }
+    catch (const std::exception &e)
+      {
+        run_summary.record_failure(step, e.what(), output);
+        throw;
+      }
   }
 
 

@@ -59,6 +59,10 @@ namespace bsmpm
   {
     out << "{\n";
     out << "  \"scene\": " << json_string(scene) << ",\n";
+    out << "  \"status\": " << json_string(status) << ",\n";
+    if (status == "failed")
+      out << "  \"failed_step\": " << failed_step << ",\n"
+          << "  \"error\": " << json_string(error) << ",\n";
     out << "  \"n_cells\": " << n_cells << ",\n";
     out << "  \"n_dofs\": " << n_dofs << ",\n";
     out << "  \"n_material_points\": " << n_material_points << ",\n";
@@ -146,7 +150,42 @@ namespace bsmpm
             line << ' ' << std::setprecision(1) << r;
       }
     line << '\n';
-    out << line.str();
+    out << line.str() << std::flush;
+  }
+
+
+
+  void
+  RunSummary::record_step(const Step                       &step,
+                          const OutputWriter               &output,
+                          const dealii::ConditionalOStream &pcout)
+  {
+    steps.push_back(step);
+    if (pcout.is_active())
+      print_step(pcout.get_stream(), step);
+    output.write_root_file("summary.json",
+                           [this](std::ostream &out) { write_json(out); });
+  }
+
+
+
+  void
+  RunSummary::record_failure(const unsigned int  step,
+                             const std::string  &message,
+                             const OutputWriter &output)
+  {
+    status      = "failed";
+    failed_step = step;
+    error       = message;
+    // The error being reported may be that the directory cannot be
+    // written: then that error is the one to report, not this one's.
+    try
+      {
+        output.write_root_file("summary.json",
+                               [this](std::ostream &out) { write_json(out); });
+      }
+    catch (...)
+      {}
   }
 
 
@@ -202,6 +241,7 @@ namespace bsmpm
 
     // The summary is the run's record for scripts: written even when the
     // ParaView series are off.
+    status = "completed";
     output.write_root_file("summary.json",
                            [this](std::ostream &out) { write_json(out); });
 

@@ -54,6 +54,12 @@ namespace bsmpm
     std::map<std::string, double> errors;
     std::map<std::string, double> quantities;
     std::map<std::string, double> timing;
+    /** "running" while steps are being added, "completed" once finish()
+     * wrote the record, "failed" after record_failure(). */
+    std::string status = "running";
+    /** A failed run: the load step it failed in and the message. */
+    unsigned int failed_step = 0;
+    std::string  error;
 
     /** JSON with numbers as numbers (full precision), NaN and inf as null. */
     void
@@ -66,6 +72,26 @@ namespace bsmpm
     /** One line of the load-step table (with the table head before step 1). */
     void
     print_step(std::ostream &out, const Step &step) const;
+
+    /**
+     * Adds a finished load step: its line in the step table, flushed so that
+     * a log that goes to a file holds every finished step even if the run is
+     * killed, and summary.json with the steps so far (written atomically), so
+     * that a run that is killed or fails keeps the record of what it did.
+     */
+    void
+    record_step(const Step                       &step,
+                const OutputWriter               &output,
+                const dealii::ConditionalOStream &pcout);
+
+    /**
+     * A run that stops with an error in load step @p step: summary.json
+     * with the steps done, status "failed", the step and @p message.
+     */
+    void
+    record_failure(const unsigned int  step,
+                   const std::string  &message,
+                   const OutputWriter &output);
 
     /** Errors and quantities, one per line, six significant digits. */
     void
