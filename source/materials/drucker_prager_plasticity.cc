@@ -71,11 +71,12 @@ namespace bsmpm
   DruckerPragerPlasticity::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Drucker-Prager");
-    prm.declare_entry("Cohesion",
-                      "1e4",
-                      Patterns::Double(0.),
-                      "Cohesion c in Pa (non-negative; positive when the "
-                      "friction angle is 0).");
+    prm.declare_entry(
+      "Cohesion",
+      "1e4",
+      Patterns::Double(0.),
+      "Cohesion c in the units of Young's modulus (non-negative; positive when the "
+      "friction angle is 0).");
     prm.declare_entry("Friction angle",
                       "30",
                       Patterns::Double(0., 90.),

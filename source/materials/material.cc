@@ -24,7 +24,11 @@ namespace bsmpm
     prm.declare_entry("Young's modulus",
                       "1e6",
                       Patterns::Double(),
-                      "Young's modulus E in Pa; must be positive.");
+                      "Young's modulus E; must be positive. bsmpm has no "
+                      "units of its own: any consistent set works, e.g. Pa, "
+                      "kg/m^3, m/s^2 and m, or kPa, t/m^3, m/s^2 and m (the "
+                      "plastic scenes in prm/); the stresses and forces it "
+                      "reports are in the same set.");
     prm.declare_entry("Poisson's ratio",
                       "0.25",
                       Patterns::Double(),
@@ -33,11 +37,12 @@ namespace bsmpm
                       "plane strain",
                       Patterns::Selection("plane strain|plane stress"),
                       "Two-dimensional idealisation of the body.");
-    prm.declare_entry("Density",
-                      "0",
-                      Patterns::Double(0.),
-                      "Mass density in kg/m^3; with the gravity of the "
-                      "Loading section it gives the body force.");
+    prm.declare_entry(
+      "Density",
+      "0",
+      Patterns::Double(0.),
+      "Mass density (kg/m^3 with Pa, t/m^3 with kPa); with the gravity of the "
+      "Loading section it gives the body force.");
     prm.leave_subsection();
     // "Constitutive model" and the subsections of the models.
     declare_constitutive_parameters(prm);

@@ -31,7 +31,8 @@ namespace bsmpm
     prm.declare_entry("Yield stress",
                       "1e4",
                       Patterns::Double(0.),
-                      "Uniaxial yield stress sigma_y in Pa (positive). In "
+                      "Uniaxial yield stress sigma_y in the units of Young's "
+                      "modulus (positive). In "
                       "plane strain the shear strength is sigma_y / sqrt(3): "
                       "a Tresca soil of undrained strength c_u needs "
                       "sigma_y = sqrt(3) c_u.");
@@ -39,7 +40,8 @@ namespace bsmpm
                       "0",
                       Patterns::Double(0.),
                       "Linear isotropic hardening: the yield stress grows by "
-                      "H times the equivalent plastic strain (Pa); 0 is "
+                      "H times the equivalent plastic strain (units of "
+                      "Young's modulus); 0 is "
                       "perfectly plastic.");
     prm.leave_subsection();
   }
