@@ -294,12 +294,23 @@ namespace bsmpm
 
 
   void
-  Scene::update_curves()
+  Scene::update_curves(const unsigned int step)
   {
     if (boundary_curves.empty())
       return;
     TimerOutput::Scope t(timer, "curves");
-    boundary_curves.update(points, grid);
+    try
+      {
+        boundary_curves.update(points, grid);
+      }
+    catch (const ExceptionBase &e)
+      {
+        // The curves were fine the step before: say which step broke them.
+        AssertThrow(step == 0,
+                    ExcMessage("Load step " + std::to_string(step) +
+                               ", after the points moved: " + message_of(e)));
+        throw;
+      }
     cut_cell_quadrature.update_geometry(boundary_curves, grid);
   }
 
@@ -362,7 +373,7 @@ namespace bsmpm
     if (pcout.is_active())
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);
-    update_curves();
+    update_curves(0);
     if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 
@@ -515,7 +526,7 @@ namespace bsmpm
         record.n_active_cells = assembly->n_active_cells();
         move_points(step, delta);
         points_moved = true;
-        update_curves();
+        update_curves(step);
         lambda += delta;
         ++record.increments;
       }

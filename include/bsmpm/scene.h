@@ -115,8 +115,10 @@ namespace bsmpm
      * @p delta of load step @p step. */
     void
     move_points(const unsigned int step, const double delta);
+    /** Rebuilds the curves through the moved points and their cuts; an
+     * error names load step @p step (0: before the first step). */
     void
-    update_curves();
+    update_curves(const unsigned int step);
     /** The probe, support reactions, traction resultant and yielded
      * points after a load step, into the run's quantities. */
     void

@@ -151,11 +151,34 @@ namespace bsmpm
                 double       i = std::floor(s);
                 if (std::abs(mid[d] - (x0[d] + j * h[d])) <= tolerance[d])
                   i = (inward[d] > 0 ? j : j - 1);
-                AssertThrow(i >= 0 && i < grid.n_cells[d],
-                            ExcMessage(
-                              "The boundary curve leaves the background grid "
-                              "or runs along its edge with the body outside "
-                              "the grid."));
+                if (i < 0 || i >= grid.n_cells[d])
+                  {
+                    // Name the place: which segment (between which boundary
+                    // points), where, and whether it runs along the grid's
+                    // edge with the body outside or lies beyond it.
+                    const bool on_edge =
+                      std::abs(mid[d] - (x0[d] + j * h[d])) <= tolerance[d];
+                    std::ostringstream message;
+                    message << "The boundary curve's segment " << k
+                            << " (between its points " << k << " and " << k + 1
+                            << ", counted from 0) at (" << mid << ") ";
+                    if (on_edge)
+                      message << "runs along the background grid's edge "
+                              << (d == 0 ? "x = " : "y = ") << x0[d] + j * h[d]
+                              << " with the body outside the grid (the "
+                                 "curve's outward normal there is ("
+                              << -inward[0] + 0. << ' ' << -inward[1] + 0.
+                              << ")): a curve on the grid's edge "
+                              << "must have the body inside, or the grid "
+                              << "must be larger.";
+                    else
+                      message << "lies outside the background grid, which "
+                              << "spans [" << x0 << "] to ["
+                              << x0 + Tensor<1, 2>({grid.n_cells[0] * h[0],
+                                                    grid.n_cells[1] * h[1]})
+                              << "].";
+                    AssertThrow(false, ExcMessage(message.str()));
+                  }
                 cell[d] = static_cast<unsigned int>(i);
               }
 
