@@ -240,6 +240,11 @@ namespace bsmpm
       return strain;
     strain.use_b_bar = true;
     strain.centroid  = Point<2>(vs / v, vt / v);
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      {
+        const Voigt mean = kernel.strain_column(i, strain.centroid);
+        strain.centroid_volumetric[i] = mean[0] + mean[1];
+      }
     if (point_kinematics == Kinematics::finite_strain)
       {
         // F-bar: the same idea for ln det f, which is not affine; its value
@@ -269,12 +274,10 @@ namespace bsmpm
         B[i] = kernel.strain_column(i, st);
         // B-bar: the point's volumetric strain replaced by the cell's mean,
         // eps_bar = eps + (theta_mean - theta) / 3 * 1 (zz included).
-        double shift = 0;
-        if (strain.use_b_bar)
-          {
-            const Voigt mean = kernel.strain_column(i, strain.centroid);
-            shift            = (mean[0] + mean[1] - B[i][0] - B[i][1]) / 3;
-          }
+        const double shift =
+          strain.use_b_bar ?
+            (strain.centroid_volumetric[i] - B[i][0] - B[i][1]) / 3 :
+            0.;
         B_bar[i] =
           Tensor<1, 4>({B[i][0] + shift, B[i][1] + shift, shift, B[i][2]});
       }
@@ -378,8 +381,10 @@ namespace bsmpm
     std::array<Tensor<1, 2>, n> tau_g;
     ConstitutiveState           state;
     unsigned int                n_yielded = 0;
-    K                                     = 0;
-    f                                     = 0;
+    const bool                  symmetric =
+      point_kinematics == Kinematics::small_strain && model.symmetric_tangent();
+    K = 0;
+    f = 0;
     for (const auto &point : cell_points)
       {
         const auto  &props = point.props;
@@ -400,12 +405,14 @@ namespace bsmpm
                                       response.stress[0][1]});
             const Tensor<2, 4> D = voigt_tangent(response.tangent);
             for (unsigned int i = 0; i < n; ++i)
-              DB_bar[i] = D * B_bar[i];
+              DB_bar[i] = w * (D * B_bar[i]);
+            // A symmetric tangent gives a symmetric cell matrix: its upper
+            // triangle here, the lower one mirrored after the points.
             for (unsigned int i = 0; i < n; ++i)
               {
                 f[i] += w * (B_bar[i] * sigma);
-                for (unsigned int j = 0; j < n; ++j)
-                  K(i, j) += w * (B_bar[i] * DB_bar[j]);
+                for (unsigned int j = symmetric ? i : 0; j < n; ++j)
+                  K(i, j) += B_bar[i] * DB_bar[j];
               }
             continue;
           }
@@ -471,6 +478,10 @@ namespace bsmpm
               }
           }
       }
+    if (symmetric)
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < i; ++j)
+          K(i, j) = K(j, i);
     return n_yielded;
   }
 

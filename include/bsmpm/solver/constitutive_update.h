@@ -204,6 +204,9 @@ namespace bsmpm
        * strain is taken (the points' centroid). */
       bool     use_b_bar = false;
       Point<2> centroid;
+      /** B-bar, small strain: the volumetric strain of each shape function
+       * column at the centroid, the same for every point of the cell. */
+      std::array<double, 8> centroid_volumetric;
       /** F-bar: ln det f at the centroid and the spatial gradients of the
        * shape functions there. */
       double                      log_det_centroid = 0;
