@@ -9,6 +9,7 @@
 #include <bsmpm/io/command_line.h>
 #include <bsmpm/io/error_report.h>
 #include <bsmpm/io/mpi_start.h>
+#include <bsmpm/io/parameter_listing.h>
 #include <bsmpm/io/parameter_sweep.h>
 #include <bsmpm/scene.h>
 #include <bsmpm/strength_reduction.h>
@@ -94,7 +95,7 @@ main(int argc, char **argv)
         {
           ParameterHandler prm;
           Scene::declare_parameters(prm);
-          prm.print_parameters(std::cout, ParameterHandler::PRM);
+          ParameterListing::print(prm, std::cout);
         }
       return 0;
     }
