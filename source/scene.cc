@@ -563,7 +563,9 @@ namespace bsmpm
         if (collapsed)
           break;
       }
-    record.load_factor = lambda;
+    // The step's own factor where it finished (the sum of cut increments
+    // may differ from it in the last bits).
+    record.load_factor = collapse_detector.collapsed() ? lambda : to;
   }
 
 
