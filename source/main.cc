@@ -9,8 +9,10 @@
 #include <bsmpm/io/command_line.h>
 #include <bsmpm/io/error_report.h>
 #include <bsmpm/io/mpi_start.h>
+#include <bsmpm/io/parameter_listing.h>
 #include <bsmpm/io/parameter_sweep.h>
 #include <bsmpm/scene.h>
+#include <bsmpm/strength_reduction.h>
 
 #include <boost/archive/archive_exception.hpp>
 
@@ -20,6 +22,22 @@
 
 namespace
 {
+  /** One analysis of the parameters @p prm: a run in load steps, or the
+   * factor of safety by strength reduction. */
+  void
+  run_analysis(dealii::ParameterHandler &prm)
+  {
+    if (bsmpm::StrengthReduction::enabled(prm))
+      {
+        bsmpm::StrengthReduction::run(prm, MPI_COMM_WORLD);
+        return;
+      }
+    bsmpm::Scene scene(MPI_COMM_WORLD);
+    scene.parse_parameters(prm);
+    scene.run();
+  }
+
+
   /** Runs the scene of the parameters @p prm on from the checkpoint
    * @p from. */
   void
@@ -77,7 +95,7 @@ main(int argc, char **argv)
         {
           ParameterHandler prm;
           Scene::declare_parameters(prm);
-          prm.print_parameters(std::cout, ParameterHandler::PRM);
+          ParameterListing::print(prm, std::cout);
         }
       return 0;
     }
@@ -105,9 +123,7 @@ main(int argc, char **argv)
       line.read_parameters(prm);
       if (line.sweep.empty())
         {
-          Scene scene(MPI_COMM_WORLD);
-          scene.parse_parameters(prm);
-          scene.run();
+          run_analysis(prm);
           return 0;
         }
 
@@ -120,9 +136,7 @@ main(int argc, char **argv)
           if (root)
             std::cout << "\nsweep " << k + 1 << " of " << n_runs << ": "
                       << assignment << "\n";
-          Scene scene(MPI_COMM_WORLD);
-          scene.parse_parameters(prm);
-          scene.run();
+          run_analysis(prm);
         }
       if (root)
         sweep.write_record();

@@ -3,6 +3,7 @@
 #include <bsmpm/io/input_checks.h>
 #include <bsmpm/points/move_diagnosis.h>
 #include <bsmpm/scene.h>
+#include <bsmpm/strength_reduction.h>
 #include <bsmpm/verification/error_measures.h>
 
 #include <algorithm>
@@ -69,6 +70,8 @@ namespace bsmpm
     CutCellQuadrature::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
     NewtonSolver::declare_parameters(prm);
+    CollapseDetector::declare_parameters(prm);
+    StrengthReduction::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
     Checkpoint::declare_parameters(prm);
@@ -92,11 +95,15 @@ namespace bsmpm
     grid.parse_parameters(prm);
     material.parse_parameters(prm);
     constitutive_model = create_constitutive_model(prm);
+    if (strength_factor != 1.)
+      constitutive_model =
+        constitutive_model->with_reduced_strength(strength_factor);
     constitutive_update =
       ConstitutiveUpdate::create(prm, *constitutive_model, material);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
+    collapse_detector.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
     if (this->finite_strain())
@@ -207,6 +214,8 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
+    collapse_detector.initialize(constitutive_update != nullptr,
+                                 boundary_curves.prescribe_displacement());
   }
 
 
@@ -385,17 +394,33 @@ namespace bsmpm
           {
             const double     load_factor = double(step) / n_load_steps;
             RunSummary::Step record;
-            record.number      = step;
-            record.load_factor = load_factor;
+            record.number = step;
             advance(step, double(step - 1) / n_load_steps, load_factor, record);
-            record_quantities(record);
-            record.quantities = run_summary.quantities;
-            run_summary.record_step(record, output, pcout);
-
-            if (output.writes_step(step, n_load_steps))
-              write_output(step, load_factor);
-            if (checkpoint.writes_step(step, n_load_steps))
-              write_checkpoint(step);
+            const bool collapsed = collapse_detector.collapsed();
+            // A step that collapsed before any increment converged leaves
+            // the body as the step before: nothing to record.
+            if (!collapsed || record.increments > 0)
+              {
+                record_quantities(record);
+                record.quantities = run_summary.quantities;
+                run_summary.record_step(record, output, pcout);
+                if (output.writes_step(step, n_load_steps) ||
+                    (collapsed && output.enabled()))
+                  write_output(step, record.load_factor);
+                if (checkpoint.writes_step(step, n_load_steps))
+                  write_checkpoint(step);
+              }
+            if (collapsed)
+              {
+                collapse_detector.record(run_summary.quantities);
+                run_summary.limit_load_reason = collapse_detector.reason();
+                pcout << "\nLimit load reached: limit load factor "
+                      << collapse_detector.limit_load_factor() << " ("
+                      << collapse_detector.reason()
+                      << "). The run stops here; summary.json gives "
+                         "limit_load_factor and its bracket.\n";
+                break;
+              }
           }
 
         if (exact_solution)
@@ -446,6 +471,7 @@ namespace bsmpm
 
     if (constitutive_update)
       run_summary.quantities["yielded_points"] = record.n_yielded;
+    collapse_detector.record(run_summary.quantities);
   }
 
 
@@ -510,6 +536,8 @@ namespace bsmpm
           {
             if (!solve_nonlinear(step, lambda, delta, cuts, record))
               {
+                if (collapse_detector.collapsed())
+                  break;
                 ++cuts;
                 delta /= 2;
                 continue;
@@ -524,12 +552,20 @@ namespace bsmpm
             record.relative_residual = report.relative_residual;
           }
         record.n_active_cells = assembly->n_active_cells();
+        // The increment's size per unit load, before the points take it.
+        const bool collapsed = collapse_detector.converged_increment(
+          step, lambda, delta, increment.linfty_norm());
         move_points(step, delta);
         points_moved = true;
         update_curves(step);
         lambda += delta;
         ++record.increments;
+        if (collapsed)
+          break;
       }
+    // The step's own factor where it finished (the sum of cut increments
+    // may differ from it in the last bits).
+    record.load_factor = collapse_detector.collapsed() ? lambda : to;
   }
 
 
@@ -545,8 +581,23 @@ namespace bsmpm
     constitutive_update->set_body_force((lambda + delta) * material.density() *
                                         gravity);
     IncrementSolver::LinearSolves solves;
-    const auto                    result = increment_solver->solve_newton(
-      delta, has_prescribed ? &prescribed : nullptr, increment, solves);
+    NewtonSolver::Result          result;
+    try
+      {
+        result = increment_solver->solve_newton(
+          delta, has_prescribed ? &prescribed : nullptr, increment, solves);
+      }
+    catch (const ExceptionBase &e)
+      {
+        // A tangent that the linear solver finds singular after the first
+        // step is a body whose plastic points leave a mechanism free (at
+        // or beyond the limit load): a failed increment, to be cut. Before
+        // anything converged it is a missing support: the error stands.
+        if (!collapse_detector.active() || step == 1)
+          throw;
+        result.converged = false;
+        result.failure   = "the linear solve failed: " + message_of(e);
+      }
     if (solves.n_solves > 0)
       {
         record.solver            = solves.method;
@@ -561,6 +612,21 @@ namespace bsmpm
       }
     if (!result.converged)
       {
+        // Under load control a step that cannot be converged however far it
+        // is cut is the limit load (CollapseDetector), not an error.
+        if (collapse_detector.active() && cuts >= newton.max_step_cuts())
+          {
+            newton.log_failure(result,
+                               lambda,
+                               delta,
+                               pcout.is_active() ? &pcout.get_stream() :
+                                                   nullptr);
+            collapse_detector.failed_increment(step,
+                                               lambda,
+                                               delta,
+                                               result.failure);
+            return false;
+          }
         newton.report_failure(result,
                               step,
                               lambda,

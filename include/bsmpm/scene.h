@@ -25,6 +25,7 @@
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/probe.h>
 #include <bsmpm/points/q1_cell_kernel.h>
+#include <bsmpm/solver/collapse_detector.h>
 #include <bsmpm/solver/constitutive_update.h>
 #include <bsmpm/solver/cut_cell_quadrature.h>
 #include <bsmpm/solver/increment_solver.h>
@@ -66,6 +67,29 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /** Divides the strength of the constitutive model by @p factor
+     * (strength reduction, StrengthReduction); call before
+     * parse_parameters(). */
+    void
+    reduce_strength(const double factor)
+    {
+      strength_factor = factor;
+    }
+
+    /** Prints nothing (the trials of a strength reduction). */
+    void
+    quiet()
+    {
+      pcout.set_condition(false);
+    }
+
+    /** Whether run() stopped at a limit load, and the detector's figures. */
+    const CollapseDetector &
+    collapse() const
+    {
+      return collapse_detector;
+    }
+
     /** Runs all load steps and writes the summary. */
     void
     run();
@@ -95,7 +119,9 @@ namespace bsmpm
     /**
      * Takes the load from factor @p from to @p to: one increment, or more
      * where a nonlinear material's Newton iterations fail and the
-     * increment is halved. Fills the solver figures of @p record.
+     * increment is halved. Fills the solver figures of @p record and its
+     * load factor, which stays below @p to where the collapse detector
+     * stops the step.
      */
     void
     advance(const unsigned int step,
@@ -135,8 +161,11 @@ namespace bsmpm
     mutable TimerOutput timer;
     Timer               total_timer;
 
-    std::string                        scene_name;
-    unsigned int                       n_load_steps = 1;
+    std::string  scene_name;
+    unsigned int n_load_steps = 1;
+    /** The constitutive model's strength is divided by this. */
+    double                             strength_factor = 1;
+    CollapseDetector                   collapse_detector;
     Tensor<1, 2>                       gravity;
     BackgroundGrid                     grid;
     LinearElasticMaterial              material;

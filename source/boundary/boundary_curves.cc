@@ -954,6 +954,18 @@ namespace bsmpm
 
 
 
+  bool
+  BoundaryCurves::prescribe_displacement() const
+  {
+    for (const auto &curve : curves)
+      for (const auto &condition : curve.conditions)
+        if (condition.prescribes_displacement())
+          return true;
+    return false;
+  }
+
+
+
   void
   BoundaryCurves::mark_support_cells(
     const BackgroundGrid                &grid,

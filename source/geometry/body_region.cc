@@ -18,8 +18,11 @@ namespace bsmpm
                       "rectangle",
                       Patterns::Selection(
                         "rectangle|rotated rectangle|"
-                        "annulus sector|rectangle minus disc"),
-                      "Shape of the body at the start of the run.");
+                        "annulus sector|rectangle minus disc|polygon"),
+                      "Shape of the body at the start of the run. A "
+                      "polygon is given by its Vertices; its edges are "
+                      "'edge 0' (vertex 0 to 1), 'edge 1', ... for the "
+                      "boundary curves.");
     prm.declare_entry("Lower left corner",
                       "0, 0",
                       ParameterTools::point_pattern(),
@@ -72,6 +75,15 @@ namespace bsmpm
                       "0.5",
                       Patterns::Double(0.),
                       "rectangle minus disc: radius of the removed disc.");
+    prm.declare_entry("Vertices",
+                      "0, 0; 1, 0; 1, 1; 0, 1",
+                      Patterns::Anything(),
+                      "polygon: its vertices 'x0, y0; x1, y1; ...' (at "
+                      "least 3, counter-clockwise, no edge crossing another; "
+                      "the last vertex joins the first). Holes: cut them "
+                      "out with a closed boundary curve with 'Trim material "
+                      "points = true', or run the polygon round the hole and "
+                      "back along a slit.");
     prm.leave_subsection();
   }
 
@@ -95,14 +107,15 @@ namespace bsmpm
   BodyRegion::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Body region");
-    const std::string shape = prm.get("Shape");
-    region_shape =
-      shape == "rectangle" ?
-        Shape::rectangle :
-        (shape == "rotated rectangle" ?
-           Shape::rotated_rectangle :
-           (shape == "annulus sector" ? Shape::annulus_sector :
-                                        Shape::rectangle_minus_disc));
+    const std::string shape    = prm.get("Shape");
+    region_shape               = shape == "rectangle" ?
+                                   Shape::rectangle :
+                                   (shape == "rotated rectangle" ?
+                                      Shape::rotated_rectangle :
+                                      (shape == "annulus sector" ?
+                                         Shape::annulus_sector :
+                                         (shape == "polygon" ? Shape::polygon :
+                                                               Shape::rectangle_minus_disc)));
     const double angle_degrees = prm.get_double("Angle");
     const double start_degrees = prm.get_double("Start angle");
     const double end_degrees   = prm.get_double("End angle");
@@ -120,6 +133,7 @@ namespace bsmpm
     annulus.end_angle    = end_degrees * numbers::PI / 180.;
     disc_center          = ParameterTools::get_point(prm, "Disc center");
     disc_radius          = prm.get_double("Disc radius");
+    const std::string vertex_text = prm.get("Vertices");
     prm.leave_subsection();
 
     switch (region_shape)
@@ -180,6 +194,76 @@ namespace bsmpm
                                  number(start_degrees) + ", " +
                                  number(end_degrees) + "."));
           break;
+        case Shape::polygon:
+          {
+            vertices.clear();
+            for (const auto &text :
+                 Utilities::split_string_list(vertex_text, ';'))
+              {
+                const auto xy = Utilities::split_string_list(text, ',');
+                AssertThrow(xy.size() == 2,
+                            ExcMessage("Body region/Vertices: '" + text +
+                                       "' is not a point 'x, y'; give the "
+                                       "vertices as 'x0, y0; x1, y1; ...'."));
+                double x = 0, y = 0;
+                try
+                  {
+                    x = Utilities::string_to_double(xy[0]);
+                    y = Utilities::string_to_double(xy[1]);
+                  }
+                catch (...)
+                  {
+                    AssertThrow(false,
+                                ExcMessage("Body region/Vertices: '" + text +
+                                           "' is not a point of two "
+                                           "numbers."));
+                  }
+                ParameterTools::require_finite(x, "Body region/Vertices");
+                ParameterTools::require_finite(y, "Body region/Vertices");
+                vertices.emplace_back(x, y);
+              }
+            AssertThrow(vertices.size() >= 3,
+                        ExcMessage("Body region/Vertices: a polygon needs at "
+                                   "least 3 vertices, got " +
+                                   std::to_string(vertices.size()) + "."));
+            const unsigned int n = vertices.size();
+            for (unsigned int i = 0; i < n; ++i)
+              AssertThrow(vertices[i].distance(vertices[(i + 1) % n]) > 0,
+                          ExcMessage("Body region/Vertices: vertices " +
+                                     std::to_string(i) + " and " +
+                                     std::to_string((i + 1) % n) +
+                                     " coincide."));
+            // Two edges that are not neighbours must not meet (a simple
+            // polygon), or contains() and area() disagree.
+            const auto cross = [](const Tensor<1, 2> &a,
+                                  const Tensor<1, 2> &b) {
+              return a[0] * b[1] - a[1] * b[0];
+            };
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = i + 2; j < n; ++j)
+                {
+                  if (i == 0 && j == n - 1)
+                    continue;
+                  const Point<2> a = vertices[i], b = vertices[(i + 1) % n],
+                                 c = vertices[j], d = vertices[(j + 1) % n];
+                  const double d1 = cross(b - a, c - a),
+                               d2 = cross(b - a, d - a),
+                               d3 = cross(d - c, a - c),
+                               d4 = cross(d - c, b - c);
+                  AssertThrow(!(d1 * d2 <= 0 && d3 * d4 <= 0),
+                              ExcMessage("Body region/Vertices: edge " +
+                                         std::to_string(i) + " and edge " +
+                                         std::to_string(j) +
+                                         " of the polygon cross or touch; "
+                                         "the boundary must not cross "
+                                         "itself."));
+                }
+            AssertThrow(area() > 0,
+                        ExcMessage("Body region/Vertices: the vertices run "
+                                   "clockwise; give them counter-clockwise "
+                                   "(the body to the left of every edge)."));
+            break;
+          }
       }
   }
 
@@ -216,6 +300,31 @@ namespace bsmpm
             theta -= 2 * numbers::PI * std::floor(theta / (2 * numbers::PI));
             return theta <= annulus.end_angle - annulus.start_angle;
           }
+        case Shape::polygon:
+          {
+            // On an edge counts as inside (the closed region) ...
+            const unsigned int n = vertices.size();
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const Point<2>     a = vertices[i], b = vertices[(i + 1) % n];
+                const Tensor<1, 2> e = b - a, d = p - a;
+                const double       t = (d * e) / (e * e);
+                if (t >= 0 && t <= 1 &&
+                    std::abs(d[0] * e[1] - d[1] * e[0]) <=
+                      1e-12 * e.norm_square())
+                  return true;
+              }
+            // ... elsewhere the crossing number of a ray in +x decides.
+            bool inside = false;
+            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
+              {
+                const Point<2> &a = vertices[i], &b = vertices[j];
+                if ((a[1] > p[1]) != (b[1] > p[1]) &&
+                    p[0] < a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]))
+                  inside = !inside;
+              }
+            return inside;
+          }
       }
     return false;
   }
@@ -249,6 +358,16 @@ namespace bsmpm
           return (annulus.outer_radius * annulus.outer_radius -
                   annulus.inner_radius * annulus.inner_radius) /
                  2 * (annulus.end_angle - annulus.start_angle);
+        case Shape::polygon:
+          {
+            // The shoelace formula: positive for counter-clockwise vertices.
+            double             twice = 0;
+            const unsigned int n     = vertices.size();
+            for (unsigned int i = 0; i < n; ++i)
+              twice += vertices[i][0] * vertices[(i + 1) % n][1] -
+                       vertices[(i + 1) % n][0] * vertices[i][1];
+            return twice / 2;
+          }
       }
     return 0;
   }
@@ -306,6 +425,17 @@ namespace bsmpm
                  arc(a.outer_radius, a.start_angle, a.end_angle),
                  ray(a.end_angle, a.outer_radius, a.inner_radius),
                  arc(a.inner_radius, a.end_angle, a.start_angle)};
+      }
+    else if (region_shape == Shape::polygon)
+      {
+        const unsigned int n = vertices.size();
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            const Point<2> p0 = vertices[k], p1 = vertices[(k + 1) % n];
+            names.push_back("edge " + std::to_string(k));
+            parts.push_back(
+              [=](const double f) { return Point<2>(p0 + f * (p1 - p0)); });
+          }
       }
     else
       {
@@ -409,6 +539,8 @@ namespace bsmpm
           return "annulus sector";
         case Shape::rectangle_minus_disc:
           return "rectangle minus disc";
+        case Shape::polygon:
+          return "polygon";
       }
     return "";
   }
@@ -542,6 +674,8 @@ namespace bsmpm
             box.extend(annulus.outer_radius * (1 - std::cos(numbers::PI / n)));
             return box;
           }
+        case Shape::polygon:
+          return BoundingBox<2>(vertices);
         default:
           {
             const auto corner = corners();

@@ -63,6 +63,21 @@ namespace bsmpm
     if (status == "failed")
       out << "  \"failed_step\": " << failed_step << ",\n"
           << "  \"error\": " << json_string(error) << ",\n";
+    if (!limit_load_reason.empty())
+      out << "  \"limit_load_reason\": " << json_string(limit_load_reason)
+          << ",\n";
+    if (!trials.empty())
+      {
+        out << "  \"strength_reduction_trials\": [";
+        for (unsigned int i = 0; i < trials.size(); ++i)
+          out << (i == 0 ? "\n" : ",\n")
+              << "    {\"factor\": " << json_number(trials[i].factor)
+              << ", \"collapsed\": " << (trials[i].collapsed ? "true" : "false")
+              << ", \"load_factor\": " << json_number(trials[i].load_factor)
+              << ", \"reason\": " << json_string(trials[i].reason)
+              << ", \"directory\": " << json_string(trials[i].directory) << "}";
+        out << "\n  ],\n";
+      }
     out << "  \"n_cells\": " << n_cells << ",\n";
     out << "  \"n_dofs\": " << n_dofs << ",\n";
     out << "  \"n_material_points\": " << n_material_points << ",\n";

@@ -71,6 +71,19 @@ namespace bsmpm
 
 
 
+  std::unique_ptr<ConstitutiveModel>
+  ConstitutiveModel::with_reduced_strength(const double) const
+  {
+    AssertThrow(false,
+                ExcMessage("Strength reduction: the constitutive model '" +
+                           name() +
+                           "' has no strength to reduce; use a plastic "
+                           "model (von Mises, Drucker-Prager)."));
+    return nullptr;
+  }
+
+
+
   bool
   ConstitutiveModel::is_linear() const
   {

@@ -17,6 +17,7 @@ namespace bsmpm
     , c(cohesion)
     , phi(friction_angle)
     , psi(dilation_angle)
+    , match(match)
   {
     const double to_degrees = 180. / numbers::PI;
     AssertThrow(std::isfinite(c) && c >= 0.,
@@ -226,6 +227,25 @@ namespace bsmpm
   DruckerPragerPlasticity::name() const
   {
     return "Drucker-Prager";
+  }
+
+
+
+  std::unique_ptr<ConstitutiveModel>
+  DruckerPragerPlasticity::with_reduced_strength(const double factor) const
+  {
+    AssertThrow(factor > 0,
+                ExcMessage("Strength reduction: the factor must be positive."));
+    // Mohr-Coulomb's strength c + sigma_n tan(phi) divided by F; the
+    // dilation angle is reduced alike, so that psi <= phi stays true and
+    // associated flow stays associated.
+    return std::make_unique<DruckerPragerPlasticity>(
+      E,
+      nu,
+      c / factor,
+      std::atan(std::tan(phi) / factor),
+      std::atan(std::tan(psi) / factor),
+      match);
   }
 
 

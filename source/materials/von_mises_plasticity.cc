@@ -123,6 +123,21 @@ namespace bsmpm
 
 
 
+  std::unique_ptr<ConstitutiveModel>
+  VonMisesPlasticity::with_reduced_strength(const double factor) const
+  {
+    AssertThrow(factor > 0,
+                ExcMessage("Strength reduction: the factor must be positive."));
+    // The yield stress sigma_y + H eps_bar is the strength at every plastic
+    // strain: both parts are divided.
+    return std::make_unique<VonMisesPlasticity>(E,
+                                                nu,
+                                                sigma_y / factor,
+                                                H / factor);
+  }
+
+
+
   BSMPM_REGISTER_CONSTITUTIVE_MODEL(
     VonMisesPlasticity,
     "von Mises",

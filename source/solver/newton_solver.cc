@@ -164,6 +164,24 @@ namespace bsmpm
 
 
   void
+  NewtonSolver::log_failure(const Result &result,
+                            const double  lambda,
+                            const double  delta,
+                            std::ostream *log) const
+  {
+    if (!log)
+      return;
+    std::ostringstream line;
+    line << "       load " << lambda << " + " << delta << ": " << result.failure
+         << ", |R_k|/|R_0|" << std::scientific << std::setprecision(1);
+    for (const auto &iteration : result.iterations)
+      line << ' ' << iteration.relative_residual;
+    *log << line.str() << '\n';
+  }
+
+
+
+  void
   NewtonSolver::report_failure(const Result      &result,
                                const unsigned int step,
                                const double       lambda,
@@ -171,16 +189,7 @@ namespace bsmpm
                                const unsigned int cuts,
                                std::ostream      *log) const
   {
-    if (log)
-      {
-        std::ostringstream line;
-        line << "       load " << lambda << " + " << delta << ": "
-             << result.failure << ", |R_k|/|R_0|" << std::scientific
-             << std::setprecision(1);
-        for (const auto &iteration : result.iterations)
-          line << ' ' << iteration.relative_residual;
-        *log << line.str() << '\n';
-      }
+    log_failure(result, lambda, delta, log);
     AssertThrow(cuts < max_step_cuts(),
                 ExcMessage("Load step " + std::to_string(step) +
                            ": the Newton iterations failed (" + result.failure +

@@ -7,7 +7,8 @@ import pathlib
 import re
 import sys
 
-# Bottom to top. The orchestrator (include/bsmpm/scene.h, source/scene.cc)
+# Bottom to top. The orchestrator (include/bsmpm/scene.h, source/scene.cc),
+# the strength reduction that runs it repeatedly (strength_reduction.*)
 # and the driver (source/main.cc) stand above all of them; the driver's
 # parts (command line, parameter files, sweeps, error reports) are io.
 LAYERS = ["base", "geometry", "materials", "points", "verification",

@@ -322,6 +322,11 @@ namespace bsmpm
     bool
     has_loads() const;
 
+    /** Whether any curve prescribes a displacement (a displacement-
+     * controlled run: the load factor scales that displacement). */
+    bool
+    prescribe_displacement() const;
+
     /**
      * Sets @p cells[c] for every locally owned cell c (by
      * active_cell_index()) that a support imposed by @p method crosses;

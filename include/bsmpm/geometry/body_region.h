@@ -16,7 +16,12 @@ namespace bsmpm
   /**
    * The region of the plane that the body occupies at the start of a run:
    * where material points are generated. Shapes: an axis-aligned rectangle,
-   * a rotated rectangle, an annulus sector, a rectangle minus a disc.
+   * a rotated rectangle, an annulus sector, a rectangle minus a disc, a
+   * simple polygon (vertices counter-clockwise; its edges are "edge 0" from
+   * vertex 0 to vertex 1, ..., "edge n-1" from the last vertex back to
+   * vertex 0). A polygon has no holes: a hole is cut out of the points by a
+   * closed boundary curve with "Trim material points", or the body is given
+   * as a polygon whose boundary runs round the hole and back along a slit.
    */
   class BodyRegion
   {
@@ -26,7 +31,8 @@ namespace bsmpm
       rectangle,
       rotated_rectangle,
       annulus_sector,
-      rectangle_minus_disc
+      rectangle_minus_disc,
+      polygon
     };
 
     static void
@@ -128,6 +134,8 @@ namespace bsmpm
     Sector   annulus;
     Point<2> disc_center;
     double   disc_radius = 0;
+    /** Polygon: its vertices, counter-clockwise. */
+    std::vector<Point<2>> vertices;
   };
 } // namespace bsmpm
 

@@ -57,6 +57,18 @@ namespace bsmpm
     /** "running" while steps are being added, "completed" once finish()
      * wrote the record, "failed" after record_failure(). */
     std::string status = "running";
+    /** A run that stopped at its limit load (CollapseDetector): why. */
+    std::string limit_load_reason;
+    /** A strength reduction (StrengthReduction): every trial factor. */
+    struct Trial
+    {
+      double      factor      = 1;
+      bool        collapsed   = false;
+      double      load_factor = 0;
+      std::string reason;
+      std::string directory;
+    };
+    std::vector<Trial> trials;
     /** A failed run: the load step it failed in and the message. */
     unsigned int failed_step = 0;
     std::string  error;

@@ -101,6 +101,16 @@ namespace bsmpm
     virtual std::string
     name() const = 0;
 
+    /**
+     * The same model with its strength divided by @p factor (> 0), for the
+     * strength reduction method (doc/limit-loads.md): von Mises divides the
+     * yield stress (and the hardening modulus), Drucker-Prager the cohesion
+     * and the tangents of the friction and dilation angles. The default
+     * refuses: a model without a strength has no factor of safety.
+     */
+    virtual std::unique_ptr<ConstitutiveModel>
+    with_reduced_strength(const double factor) const;
+
     double
     youngs_modulus() const
     {

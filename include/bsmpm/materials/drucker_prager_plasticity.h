@@ -48,6 +48,9 @@ namespace bsmpm
                    const double eq_plastic_strain) const override;
     std::string
     name() const override;
+    /** c / F, tan(phi) / F and tan(psi) / F, the same match. */
+    std::unique_ptr<ConstitutiveModel>
+    with_reduced_strength(const double factor) const override;
 
     /** Coefficients of the cone: f = sqrt(J2) + eta p - xi c,
      * g = sqrt(J2) + eta_bar p. */
@@ -87,6 +90,7 @@ namespace bsmpm
     double eta_f;
     double xi_f;
     double eta_g;
+    Match  match;
   };
 } // namespace bsmpm
 

@@ -33,6 +33,8 @@ namespace bsmpm
                    const double eq_plastic_strain) const override;
     std::string
     name() const override;
+    std::unique_ptr<ConstitutiveModel>
+    with_reduced_strength(const double factor) const override;
 
     double
     yield_stress() const

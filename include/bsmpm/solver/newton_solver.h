@@ -97,6 +97,15 @@ namespace bsmpm
                    const unsigned int cuts,
                    std::ostream      *log) const;
 
+    /** Writes why the iterations @p result of the load increment @p delta
+     * from @p lambda failed, with their residuals, to @p log (if not
+     * null). */
+    void
+    log_failure(const Result &result,
+                const double  lambda,
+                const double  delta,
+                std::ostream *log) const;
+
     /** How many times a load increment may be halved. */
     unsigned int
     max_step_cuts() const
