@@ -64,14 +64,14 @@ namespace bsmpm
                             const AffineConstraints<double> &constraints,
                             TrilinosWrappers::SparseMatrix  &matrix,
                             TrilinosWrappers::MPI::Vector   &rhs,
-                            const BoundaryCurve             *only) const
+                            const BoundaryCurve             *only,
+                            const std::vector<CellMoments>  *moments) const
   {
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
     const double           beta =
       penalty * material.youngs_modulus() / grid.min_cell_size();
-    const Tensor<2, 3> &C = material.stiffness();
 
     FullMatrix<double>                   cell_matrix(n, n);
     Vector<double>                       cell_rhs(n);
@@ -95,8 +95,15 @@ namespace bsmpm
           const bool          roller = condition->holds_normal_component_only();
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
-          cell_matrix                = 0;
-          cell_rhs                   = 0;
+          // B-bar: the volumetric strain at the centroid of the cell's
+          // material (Q1CellKernel::stress_column()); without moments the
+          // point's own (the standard stress).
+          const Point<2> centroid =
+            moments != nullptr ?
+              Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
+              Point<2>();
+          cell_matrix = 0;
+          cell_rhs    = 0;
 
           for (unsigned int q = 0; q < gauss.size(); ++q)
             {
@@ -113,8 +120,11 @@ namespace bsmpm
               };
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  value[i]    = kernel.shape_value(i, st);
-                  stress_n[i] = traction(C * kernel.strain_column(i, st), nv);
+                  value[i] = kernel.shape_value(i, st);
+                  stress_n[i] =
+                    traction(kernel.stress_column(
+                               i, st, moments != nullptr ? centroid : st),
+                             nv);
                 }
               for (unsigned int i = 0; i < n; ++i)
                 for (unsigned int j = 0; j < n; ++j)

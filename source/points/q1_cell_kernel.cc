@@ -1,5 +1,7 @@
 #include <bsmpm/points/q1_cell_kernel.h>
 
+#include <cmath>
+
 namespace bsmpm
 {
   namespace
@@ -16,7 +18,9 @@ namespace bsmpm
 
   Q1CellKernel::Q1CellKernel(const FiniteElement<2> &fe,
                              const Tensor<1, 2>     &cell_size,
-                             const Tensor<2, 3>     &C)
+                             const Tensor<2, 3>     &C,
+                             const bool              b_bar)
+    : C(C)
   {
     AssertThrow(fe.n_dofs_per_cell() == dofs_per_cell && fe.n_components() == 2,
                 ExcMessage("Q1CellKernel needs FESystem(FE_Q(1), 2)."));
@@ -39,6 +43,28 @@ namespace bsmpm
         Bt[x_row][i] = b[v] / hx;
         B0[y_row][i] = c[v] / hy;
         Bs[y_row][i] = d[v] / hy;
+      }
+
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        theta_s[i] = Bs[0][i] + Bs[1][i];
+        theta_t[i] = Bt[0][i] + Bt[1][i];
+      }
+    if (b_bar)
+      {
+        // C = lambda m m^T + mu diag(2, 2, 1) (plane strain, or plane
+        // stress with its own lambda): then C maps the in-plane volumetric
+        // strain (1, 1, 0) theta / 2 to kappa theta (1, 1, 0) and the
+        // deviatoric strain to a deviatoric stress, which is what the
+        // rank-two form of add_stiffness() needs.
+        const double scale = std::abs(C[0][0]) + std::abs(C[2][2]);
+        const double tol   = 1e-12 * scale;
+        AssertThrow(std::abs(C[0][0] - C[1][1]) <= tol &&
+                      std::abs(C[0][2]) <= tol && std::abs(C[1][2]) <= tol &&
+                      std::abs(C[0][0] - C[0][1] - 2 * C[2][2]) <= tol,
+                    ExcMessage("B-bar in the linear kernel needs an isotropic "
+                               "material matrix."));
+        kappa = (C[0][0] + C[0][1]) / 2;
       }
 
     // X^T C Y for 3x8 arrays X, Y.
@@ -108,6 +134,25 @@ namespace bsmpm
       k[ij] += w[0] * blocks[0][ij] + w[1] * blocks[1][ij] +
                w[2] * blocks[2][ij] + w[3] * blocks[3][ij] +
                w[4] * blocks[4][ij] + w[5] * blocks[5][ij];
+    if (kappa > 0 && m.v > 0)
+      {
+        // B-bar: minus kappa sum_p V_p (g_p - g_bar)(g_p - g_bar)^T, with
+        // g_p - g_bar = (s - s_bar) theta_s + (t - t_bar) theta_t: the
+        // central second moments times the volumetric columns
+        // (doc/b-bar.md).
+        const double css = m.vss - m.vs * m.vs / m.v;
+        const double ctt = m.vtt - m.vt * m.vt / m.v;
+        const double cst = m.vst - m.vs * m.vt / m.v;
+        LocalVector  a, b;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            a[i] = kappa * (css * theta_s[i] + cst * theta_t[i]);
+            b[i] = kappa * (cst * theta_s[i] + ctt * theta_t[i]);
+          }
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+            k[i * dofs_per_cell + j] -= a[i] * theta_s[j] + b[i] * theta_t[j];
+      }
   }
 
 
@@ -123,6 +168,19 @@ namespace bsmpm
           sum += B0[r][i] * m.stress[r] + Bs[r][i] * m.stress_s[r] +
                  Bt[r][i] * m.stress_t[r];
         f[i] += sum;
+      }
+    if (kappa > 0 && m.v > 0)
+      {
+        // B-bar: sum_p V_p (theta_i(centroid) - theta_i(p)) tr(sigma_p) / 2.
+        const Point<2> c  = centroid(m);
+        const double   as = ((m.stress[0] + m.stress[1]) * c[0] -
+                           (m.stress_s[0] + m.stress_s[1])) /
+                          2;
+        const double at = ((m.stress[0] + m.stress[1]) * c[1] -
+                           (m.stress_t[0] + m.stress_t[1])) /
+                          2;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          f[i] += theta_s[i] * as + theta_t[i] * at;
       }
   }
 
