@@ -272,9 +272,19 @@ namespace bsmpm
                                           (1 - D) * (trace_dt[i] * normal) *
                                             outer_product(normal, tangent));
                           else
-                            B2[i] = voigt(
-                              dD * outer_product(trace[i], normal) -
-                              (1 - D) * outer_product(trace_dt[i], tangent));
+                            // A fixed or prescribed support keeps the
+                            // normal part only: the tangential part,
+                            // -(1 - D) dw(c)/dt (x) t, integrates across
+                            // the band to (delta / 3) dw/dt, whose sum
+                            // along a side leaves (delta / 3) w . sigma t
+                            // at its ends: at a corner of two displacement
+                            // supports the tangents differ and a linear
+                            // field is off by O(delta) (doc/
+                            // implicit-boundary.md, "The band at corners").
+                            // Without it, int Delta^T sigma over the band is
+                            // exactly the boundary flux int w . sigma n,
+                            // corners or not.
+                            B2[i] = voigt(dD * outer_product(trace[i], normal));
                           CB1[i] = kernel.stress_column(
                             i, st, moments != nullptr ? centroid : st);
                           CB2[i] = C * B2[i];
@@ -298,9 +308,14 @@ namespace bsmpm
                       // prescribed strain.
                       if (imposes)
                         {
+                          // The same band strain as that of w (no
+                          // tangential part for a full displacement), so
+                          // that w(c) = g(c) leaves no band strain at all.
                           const Voigt strain_g =
-                            voigt(dD * outer_product(g, normal) -
-                                  (1 - D) * outer_product(dg_dt, tangent));
+                            roller ?
+                              voigt(dD * outer_product(g, normal) -
+                                    (1 - D) * outer_product(dg_dt, tangent)) :
+                              voigt(dD * outer_product(g, normal));
                           const Voigt sigma_g = C * strain_g;
                           for (unsigned int i = 0; i < n; ++i)
                             cell_rhs[i] +=
