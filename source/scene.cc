@@ -100,6 +100,7 @@ namespace bsmpm
         constitutive_model->with_reduced_strength(strength_factor);
     constitutive_update =
       ConstitutiveUpdate::create(prm, *constitutive_model, material);
+    linear_b_bar = !constitutive_update && ConstitutiveUpdate::uses_b_bar(prm);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
@@ -179,7 +180,8 @@ namespace bsmpm
                               nitsche_boundary,
                               ghost_penalty,
                               exact_solution.get(),
-                              gravity},
+                              gravity,
+                              linear_b_bar},
         timer);
       assembly->setup();
       assembly->keep_support_terms(reactions.curves());
@@ -287,7 +289,8 @@ namespace bsmpm
       /*update_stress=*/constitutive_update == nullptr,
       /*update_strain=*/!constitutive_update ||
         constitutive_update->kinematics() ==
-          ConstitutiveUpdate::Kinematics::small_strain);
+          ConstitutiveUpdate::Kinematics::small_strain,
+      &cell_moments);
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)

@@ -172,6 +172,8 @@ namespace bsmpm
     std::unique_ptr<ConstitutiveModel> constitutive_model;
     /** Only for a nonlinear constitutive model or finite strain. */
     std::unique_ptr<ConstitutiveUpdate> constitutive_update;
+    /** The linear path's volumetric strain is the cell's mean (B-bar). */
+    bool linear_b_bar = false;
 
     /** Whether the points follow the finite-strain kinematics. */
     bool

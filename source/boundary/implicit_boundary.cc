@@ -129,7 +129,8 @@ namespace bsmpm
     const AffineConstraints<double>                  &constraints,
     TrilinosWrappers::SparseMatrix                   &matrix,
     TrilinosWrappers::MPI::Vector                    &rhs,
-    const BoundaryCurve                              *only)
+    const BoundaryCurve                              *only,
+    const std::vector<CellMoments>                   *moments)
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     // Every process holds every curve: the check is collective.
@@ -185,8 +186,15 @@ namespace bsmpm
                                condition->prescribes_displacement();
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
-          cell_matrix                = 0;
-          cell_rhs                   = 0;
+          // B-bar: the regular strain's stress takes the volumetric strain
+          // at the centroid of the cell's material, as the points'
+          // stiffness does (Q1CellKernel::stress_column()).
+          const Point<2> centroid =
+            moments != nullptr ?
+              Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
+              Point<2>();
+          cell_matrix = 0;
+          cell_rhs    = 0;
 
           for (unsigned int q = 0; q < along.size(); ++q)
             {
@@ -264,18 +272,32 @@ namespace bsmpm
                                           (1 - D) * (trace_dt[i] * normal) *
                                             outer_product(normal, tangent));
                           else
-                            B2[i] = voigt(
-                              dD * outer_product(trace[i], normal) -
-                              (1 - D) * outer_product(trace_dt[i], tangent));
-                          CB1[i] = C * B1[i];
+                            // A fixed or prescribed support keeps the
+                            // normal part only: the tangential part,
+                            // -(1 - D) dw(c)/dt (x) t, integrates across
+                            // the band to (delta / 3) dw/dt, whose sum
+                            // along a side leaves (delta / 3) w . sigma t
+                            // at its ends: at a corner of two displacement
+                            // supports the tangents differ and a linear
+                            // field is off by O(delta) (doc/
+                            // implicit-boundary.md, "The band at corners").
+                            // Without it, int Delta^T sigma over the band is
+                            // exactly the boundary flux int w . sigma n,
+                            // corners or not.
+                            B2[i] = voigt(dD * outer_product(trace[i], normal));
+                          CB1[i] = kernel.stress_column(
+                            i, st, moments != nullptr ? centroid : st);
                           CB2[i] = C * B2[i];
                         }
-                      // (B + Delta)^T C (B + Delta) - B^T C B.
+                      // (B + Delta)^T C (B + Delta) - B^T C B, with B-bar
+                      // (Bbar + Delta)^T C (Bbar + Delta) - Bbar^T C Bbar:
+                      // Delta has no zz part, so Bbar^T C Delta is the
+                      // B-bar stress of B times Delta.
                       for (unsigned int i = 0; i < n; ++i)
                         for (unsigned int j = 0; j < n; ++j)
                           cell_matrix(i, j) +=
                             w *
-                            (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+                            (CB1[i] * B2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
                       // Band part of f^d, int Delta^T C B d^a, and of the
                       // internal force.
                       const Voigt sigma = sigma_previous + C * strain_a;
@@ -286,11 +308,18 @@ namespace bsmpm
                       // prescribed strain.
                       if (imposes)
                         {
-                          const Voigt sigma_g =
-                            C * voigt(dD * outer_product(g, normal) -
-                                      (1 - D) * outer_product(dg_dt, tangent));
+                          // The same band strain as that of w (no
+                          // tangential part for a full displacement), so
+                          // that w(c) = g(c) leaves no band strain at all.
+                          const Voigt strain_g =
+                            roller ?
+                              voigt(dD * outer_product(g, normal) -
+                                    (1 - D) * outer_product(dg_dt, tangent)) :
+                              voigt(dD * outer_product(g, normal));
+                          const Voigt sigma_g = C * strain_g;
                           for (unsigned int i = 0; i < n; ++i)
-                            cell_rhs[i] += w * (B1[i] + B2[i]) * sigma_g;
+                            cell_rhs[i] +=
+                              w * (CB1[i] * strain_g + B2[i] * sigma_g);
                         }
                       continue;
                     }

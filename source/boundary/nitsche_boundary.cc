@@ -3,6 +3,8 @@
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/boundary/nitsche_boundary.h>
 
+#include <algorithm>
+
 namespace bsmpm
 {
   namespace
@@ -30,10 +32,14 @@ namespace bsmpm
   NitscheBoundary::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nitsche");
-    prm.declare_entry("Penalty",
-                      "100",
-                      Patterns::Double(0.),
-                      "gamma in the penalty gamma E / h of Nitsche's method.");
+    prm.declare_entry(
+      "Penalty",
+      "100",
+      Patterns::Double(0.),
+      "gamma in the penalty gamma max(E, kappa) / h of Nitsche's "
+      "method, kappa = lambda + mu the in-plane bulk modulus "
+      "(E unless the material is nearly incompressible in "
+      "plane strain, nu > 0.3).");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),
@@ -64,14 +70,24 @@ namespace bsmpm
                             const AffineConstraints<double> &constraints,
                             TrilinosWrappers::SparseMatrix  &matrix,
                             TrilinosWrappers::MPI::Vector   &rhs,
-                            const BoundaryCurve             *only) const
+                            const BoundaryCurve             *only,
+                            const std::vector<CellMoments>  *moments) const
   {
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
-    const double           beta =
-      penalty * material.youngs_modulus() / grid.min_cell_size();
-    const Tensor<2, 3> &C = material.stiffness();
+    // The consistency term pairs the traction of the material's stiffest
+    // mode with the boundary: for an isotropic material the volumetric one,
+    // 2 kappa with the in-plane bulk modulus kappa = (C_00 + C_01) / 2 =
+    // lambda + mu, which grows without bound as nu -> 0.5 in plane strain.
+    // The penalty must outgrow it to keep the form coercive: scale it by
+    // max(E, kappa). Up to nu = 0.3 in plane strain (kappa <= 0.96 E), and
+    // in plane stress for every nu (kappa = E / (2 (1 - nu)) <= E), that
+    // is E, as before; at nu = 0.499 it is 167 E (doc/b-bar.md).
+    const Tensor<2, 3> &C     = material.stiffness();
+    const double        kappa = (C[0][0] + C[0][1]) / 2;
+    const double beta = penalty * std::max(material.youngs_modulus(), kappa) /
+                        grid.min_cell_size();
 
     FullMatrix<double>                   cell_matrix(n, n);
     Vector<double>                       cell_rhs(n);
@@ -95,8 +111,15 @@ namespace bsmpm
           const bool          roller = condition->holds_normal_component_only();
           const BSplineCurve &spline = *curve.spline;
           const double        du     = piece.u_end - piece.u_begin;
-          cell_matrix                = 0;
-          cell_rhs                   = 0;
+          // B-bar: the volumetric strain at the centroid of the cell's
+          // material (Q1CellKernel::stress_column()); without moments the
+          // point's own (the standard stress).
+          const Point<2> centroid =
+            moments != nullptr ?
+              Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
+              Point<2>();
+          cell_matrix = 0;
+          cell_rhs    = 0;
 
           for (unsigned int q = 0; q < gauss.size(); ++q)
             {
@@ -113,8 +136,11 @@ namespace bsmpm
               };
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  value[i]    = kernel.shape_value(i, st);
-                  stress_n[i] = traction(C * kernel.strain_column(i, st), nv);
+                  value[i] = kernel.shape_value(i, st);
+                  stress_n[i] =
+                    traction(kernel.stress_column(
+                               i, st, moments != nullptr ? centroid : st),
+                             nv);
                 }
               for (unsigned int i = 0; i < n; ++i)
                 for (unsigned int j = 0; j < n; ++j)

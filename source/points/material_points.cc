@@ -169,7 +169,8 @@ namespace bsmpm
     const SupportFunction                            &support,
     const std::vector<double>                        *cell_quality,
     const bool                                        update_stress,
-    const bool                                        update_strain)
+    const bool                                        update_strain,
+    const std::vector<CellMoments>                   *cell_moments)
   {
     const Tensor<2, 3> &C = material.stiffness();
     MoveReport          report;
@@ -200,6 +201,14 @@ namespace bsmpm
         const bool near_support =
           support_cells && (*support_cells)[cell->active_cell_index()];
         const bool has_material = holds_material(cell);
+        // B-bar: the volumetric strain of the stress is that at the
+        // centroid of the moments the cell's stiffness was made of.
+        const bool b_bar =
+          kernel.uses_b_bar() && cell_moments != nullptr && has_material;
+        const Point<2> centroid =
+          b_bar ?
+            Q1CellKernel::centroid((*cell_moments)[cell->active_cell_index()]) :
+            Point<2>();
 
         for (auto &particle : particles.particles_in_cell(cell))
           {
@@ -207,7 +216,7 @@ namespace bsmpm
             Voigt          de = e[0] + st[0] * e[1] + st[1] * e[2];
             if (!has_material)
               de = boundary_strain(kernel, cell, st, increment, prescribed);
-            const Voigt ds = C * de;
+            const Voigt ds = b_bar ? kernel.stress(e, st, centroid) : C * de;
             auto        du = kernel.displacement(d, st);
             double      D  = 1;
             if (near_support)

@@ -1,5 +1,7 @@
 #include <bsmpm/points/q1_cell_kernel.h>
 
+#include <cmath>
+
 namespace bsmpm
 {
   namespace
@@ -16,7 +18,9 @@ namespace bsmpm
 
   Q1CellKernel::Q1CellKernel(const FiniteElement<2> &fe,
                              const Tensor<1, 2>     &cell_size,
-                             const Tensor<2, 3>     &C)
+                             const Tensor<2, 3>     &C,
+                             const bool              b_bar)
+    : C(C)
   {
     AssertThrow(fe.n_dofs_per_cell() == dofs_per_cell && fe.n_components() == 2,
                 ExcMessage("Q1CellKernel needs FESystem(FE_Q(1), 2)."));
@@ -41,6 +45,28 @@ namespace bsmpm
         Bs[y_row][i] = d[v] / hy;
       }
 
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        theta_s[i] = Bs[0][i] + Bs[1][i];
+        theta_t[i] = Bt[0][i] + Bt[1][i];
+      }
+    if (b_bar)
+      {
+        // C = lambda m m^T + mu diag(2, 2, 1) (plane strain, or plane
+        // stress with its own lambda): then C maps the in-plane volumetric
+        // strain (1, 1, 0) theta / 2 to kappa theta (1, 1, 0) and the
+        // deviatoric strain to a deviatoric stress, which is what the
+        // rank-two form of add_stiffness() needs.
+        const double scale = std::abs(C[0][0]) + std::abs(C[2][2]);
+        const double tol   = 1e-12 * scale;
+        AssertThrow(std::abs(C[0][0] - C[1][1]) <= tol &&
+                      std::abs(C[0][2]) <= tol && std::abs(C[1][2]) <= tol &&
+                      std::abs(C[0][0] - C[0][1] - 2 * C[2][2]) <= tol,
+                    ExcMessage("B-bar in the linear kernel needs an isotropic "
+                               "material matrix."));
+        kappa = (C[0][0] + C[0][1]) / 2;
+      }
+
     // X^T C Y for 3x8 arrays X, Y.
     const auto product = [&C](const auto        &X,
                               const auto        &Y,
@@ -63,6 +89,23 @@ namespace bsmpm
           blocks[4][ij]         = product(Bt, Bt, i, j);
           blocks[5][ij]         = product(Bs, Bt, i, j) + product(Bt, Bs, i, j);
         }
+
+    // B-bar (doc/b-bar.md): K_bar = K - kappa (css gs gs^T + ctt gt gt^T +
+    // cst (gs gt^T + gt gs^T)) with the central moments css = vss - vs^2 / v,
+    // ctt = vtt - vt^2 / v, cst = vst - vs vt / v. The parts in vss, vtt and
+    // vst go into their blocks here; what is left is the rank-one
+    // kappa / v r r^T with r = vs gs + vt gt (add_stiffness()), so that the
+    // correction costs one 8x8 outer product per cell.
+    if (kappa > 0)
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        for (unsigned int j = 0; j < dofs_per_cell; ++j)
+          {
+            const unsigned int ij = i * dofs_per_cell + j;
+            blocks[3][ij] -= kappa * theta_s[i] * theta_s[j];
+            blocks[4][ij] -= kappa * theta_t[i] * theta_t[j];
+            blocks[5][ij] -=
+              kappa * (theta_s[i] * theta_t[j] + theta_t[i] * theta_s[j]);
+          }
   }
 
 
@@ -108,6 +151,24 @@ namespace bsmpm
       k[ij] += w[0] * blocks[0][ij] + w[1] * blocks[1][ij] +
                w[2] * blocks[2][ij] + w[3] * blocks[3][ij] +
                w[4] * blocks[4][ij] + w[5] * blocks[5][ij];
+    if (kappa > 0 && m.v > 0)
+      {
+        // B-bar: minus kappa sum_p V_p (g_p - g_bar)(g_p - g_bar)^T, with
+        // g_p - g_bar = (s - s_bar) theta_s + (t - t_bar) theta_t: the
+        // central second moments times the volumetric columns
+        // (doc/b-bar.md). Their vss, vtt, vst parts are in the blocks
+        // (constructor); the rest is kappa / v r r^T, r = vs gs + vt gt.
+        LocalVector  r;
+        const double scale = kappa / m.v;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          r[i] = m.vs * theta_s[i] + m.vt * theta_t[i];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            const double ri = scale * r[i];
+            for (unsigned int j = 0; j < dofs_per_cell; ++j)
+              k[i * dofs_per_cell + j] += ri * r[j];
+          }
+      }
   }
 
 
@@ -123,6 +184,19 @@ namespace bsmpm
           sum += B0[r][i] * m.stress[r] + Bs[r][i] * m.stress_s[r] +
                  Bt[r][i] * m.stress_t[r];
         f[i] += sum;
+      }
+    if (kappa > 0 && m.v > 0)
+      {
+        // B-bar: sum_p V_p (theta_i(centroid) - theta_i(p)) tr(sigma_p) / 2.
+        const Point<2> c  = centroid(m);
+        const double   as = ((m.stress[0] + m.stress[1]) * c[0] -
+                           (m.stress_s[0] + m.stress_s[1])) /
+                          2;
+        const double at = ((m.stress[0] + m.stress[1]) * c[1] -
+                           (m.stress_t[0] + m.stress_t[1])) /
+                          2;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          f[i] += theta_s[i] * as + theta_t[i] * at;
       }
   }
 

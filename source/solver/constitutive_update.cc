@@ -138,12 +138,16 @@ namespace bsmpm
       "Volumetric strain",
       "B-bar",
       Patterns::Selection("B-bar|standard"),
-      "Nonlinear constitutive models: B-bar replaces the volumetric strain "
-      "of every point by the mean over the points of its cell, so that "
-      "isochoric plastic flow does not lock the bilinear grid; standard "
-      "keeps the points' own (a model that stays elastic then gives the "
-      "linear code's results, up to the cut cells' quadrature). Linear "
-      "elasticity always uses the standard strain.");
+      "B-bar replaces the volumetric strain of every point by its mean over "
+      "the cell's material, so that neither isochoric plastic flow nor a "
+      "nearly incompressible elastic material (Poisson's ratio near 0.5) "
+      "locks the bilinear grid; standard keeps the points' own. Linear "
+      "elasticity (small strain): the in-plane split, mean of eps_xx + "
+      "eps_yy at the centroid of the cell's moments (fitted ones in cut "
+      "cells), stress C eps + (lambda + mu)(theta_mean - theta)(1, 1, 0), "
+      "also in the Nitsche and implicit-boundary terms (doc/b-bar.md). "
+      "Nonlinear models: the 3D split (zz included). Finite strain: F-bar "
+      "for nonlinear models, none for linear elasticity.");
     prm.declare_entry(
       "Kinematics",
       "small strain",
@@ -184,6 +188,17 @@ namespace bsmpm
                                                     Kinematics::finite_strain :
                                                     Kinematics::small_strain);
     return nullptr;
+  }
+
+
+
+  bool
+  ConstitutiveUpdate::uses_b_bar(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    const bool b_bar = prm.get("Volumetric strain") == "B-bar";
+    prm.leave_subsection();
+    return b_bar;
   }
 
 

@@ -27,7 +27,8 @@ namespace bsmpm
     const BackgroundGrid &grid = parts.grid;
     cell_kernel                = std::make_unique<Q1CellKernel>(grid.fe(),
                                                  grid.cell_size(),
-                                                 parts.material.stiffness());
+                                                 parts.material.stiffness(),
+                                                 parts.b_bar);
 
     const MPI_Comm comm = grid.mpi_communicator();
     // With a ghost penalty the first assembly makes the matrix, with the
@@ -217,6 +218,7 @@ namespace bsmpm
         if (Utilities::MPI::min(held ? 1 : 0, grid.mpi_communicator()) == 0)
           make_matrix(weak);
       }
+    assembly_moments = &moments;
     timer.enter_subsection("assembly");
     system_matrix = 0;
     system_rhs    = 0;
@@ -315,6 +317,7 @@ namespace bsmpm
       }
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
+    assembly_moments = nullptr;
   }
 
 
@@ -388,7 +391,8 @@ namespace bsmpm
                                          constraints,
                                          matrix,
                                          rhs,
-                                         only);
+                                         only,
+                                         assembly_moments);
       }
     if (uses(BoundaryCurve::DirichletMethod::nitsche))
       {
@@ -402,7 +406,8 @@ namespace bsmpm
                                         constraints,
                                         matrix,
                                         rhs,
-                                        only);
+                                        only,
+                                        assembly_moments);
       }
   }
 

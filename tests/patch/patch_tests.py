@@ -18,14 +18,17 @@ layout a user would pick (per cell 1..8, a lattice, cell centroids):
       (per cell 2, lattice, cell centroid): the cases above cover the
       others, and every run costs 1.5 s in a Debug build.
 
-The supports by the implicit boundary method (delta/h = 1e-6) or by
-Nitsche's method. The exact stress is constant, so the discrete one must be
+The supports by the implicit boundary method (delta/h = 1e-6, or with
+--band default the default band of 1e-2: the consistent formulation is
+exact whatever the band, corners of two displacement supports included) or
+by Nitsche's method. The exact stress is constant, so the discrete one must be
 too, up to round-off times the condition number: every relative stress error
 R_sigma_* <= 1e-8 (implicit boundary) or <= 1e-10 (Nitsche). The cut cells
 make this hold: their stiffness takes the exact moments of the part of the
 cell inside the square, their stresses are integrated by fitted weights.
 
 Usage: patch_tests.py --bsmpm BSMPM --method ibm|nitsche [--angles ...]
+       [--all-layouts CASES] [--full-angle A] [--band default|WIDTH]
 """
 
 import argparse
@@ -39,7 +42,7 @@ import tempfile
 E, NU, P = 1e6, 0.25, 8000.0
 
 
-def scene(angle, layout, case, method, directory):
+def scene(angle, layout, case, method, directory, band="1e-6"):
     """The parameter file of one patch test."""
     a = math.radians(angle)
     cx = cy = 0.075
@@ -118,9 +121,12 @@ def scene(angle, layout, case, method, directory):
                   "  end"]
     lines += [
         "end",
-        "subsection Implicit boundary",
-        "  set Relative band width = 1e-6",
-        "end",
+    ]
+    if band != "default":
+        lines += ["subsection Implicit boundary",
+                  f"  set Relative band width = {band}",
+                  "end"]
+    lines += [
         "subsection Exact solution",
         "  set Name = constant stress",
         "  subsection Constant stress",
@@ -143,12 +149,22 @@ def main():
     parser.add_argument("--bsmpm", required=True)
     parser.add_argument("--method", choices=["ibm", "nitsche"], required=True)
     parser.add_argument("--angles", default="0,15,30,45,60")
+    parser.add_argument("--all-layouts", default="pressure,displacement",
+                        help="the cases run with every layout; the others "
+                             "with per cell 2, lattice and cell centroid")
+    parser.add_argument("--full-angle", type=float, default=None,
+                        help="run the --all-layouts cases with every layout "
+                             "at this angle only (default: at every angle)")
+    parser.add_argument("--band", default="1e-6",
+                        help="relative band width of the implicit boundary "
+                             "method, or 'default'")
     args = parser.parse_args()
 
     bound = 1e-8 if args.method == "ibm" else 1e-10
     layouts = [f"per cell {n}" for n in range(1, 9)] + ["lattice",
                                                        "cell centroid"]
-    normal_layouts = ["per cell 2", "lattice", "cell centroid"]
+    few_layouts = ["per cell 2", "lattice", "cell centroid"]
+    all_layouts_for = args.all_layouts.split(",")
     failures, worst = [], 0.0
     with tempfile.TemporaryDirectory() as tmp:
         prm = os.path.join(tmp, "patch.prm")
@@ -156,10 +172,12 @@ def main():
         for angle in [float(a) for a in args.angles.split(",")]:
             for case in ("pressure", "displacement", "normal"):
                 row = []
-                for layout in (layouts if case != "normal" else
-                               normal_layouts):
+                full = case in all_layouts_for and (
+                    args.full_angle is None or angle == args.full_angle)
+                for layout in (layouts if full else few_layouts):
                     with open(prm, "w") as f:
-                        f.write(scene(angle, layout, case, args.method, out))
+                        f.write(scene(angle, layout, case, args.method, out,
+                                      args.band))
                     run = subprocess.run([args.bsmpm, prm],
                                          capture_output=True, text=True)
                     if run.returncode != 0:
@@ -179,8 +197,8 @@ def main():
                                         f"R_sigma {error:.2e} > {bound:.0e}")
                 print(f"{angle:4.0f} deg {case:12s} " + " ".join(row),
                       flush=True)
-    print(f"layouts: {', '.join(layouts)} (normal: "
-          f"{', '.join(normal_layouts)})")
+    print(f"layouts: {', '.join(layouts)} (cases other than "
+          f"{', '.join(all_layouts_for)}: {', '.join(few_layouts)})")
     print(f"worst R_sigma {worst:.2e} (bound {bound:.0e})")
     for failure in failures:
         print("FAILED:", failure)

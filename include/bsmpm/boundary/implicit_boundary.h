@@ -85,6 +85,8 @@ namespace bsmpm
      * the consistent formulation, from the prescribed values themselves
      * times @p increment_factor (@p exact for "displacement exact").
      * With @p only, the supports of that curve alone (SupportReaction).
+     * With a B-bar @p kernel, @p moments (by active_cell_index) give each
+     * cell's centroid for the B-bar stress of the band's cross terms.
      */
     void
     assemble(const BoundaryCurves                             &curves,
@@ -97,7 +99,8 @@ namespace bsmpm
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs,
-             const BoundaryCurve                              *only = nullptr);
+             const BoundaryCurve                              *only = nullptr,
+             const std::vector<CellMoments> *moments                = nullptr);
 
     /** Whether any IBM support prescribes a displacement (both
      * components: a normal displacement is imposed by the consistent

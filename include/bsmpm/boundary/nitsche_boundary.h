@@ -45,7 +45,9 @@ namespace bsmpm
     /**
      * Adds the Nitsche terms of all Nitsche supports on locally owned cells.
      * @p increment_factor scales the prescribed displacement to the
-     * increment of this step.
+     * increment of this step. With a B-bar @p kernel, @p moments (by
+     * active_cell_index) give each cell's centroid: the consistency terms
+     * take the B-bar stress, the one the cell's stiffness is made of.
      */
     void
     assemble(const BoundaryCurves            &curves,
@@ -57,7 +59,8 @@ namespace bsmpm
              const AffineConstraints<double> &constraints,
              TrilinosWrappers::SparseMatrix  &matrix,
              TrilinosWrappers::MPI::Vector   &rhs,
-             const BoundaryCurve             *only = nullptr) const;
+             const BoundaryCurve             *only    = nullptr,
+             const std::vector<CellMoments>  *moments = nullptr) const;
 
   private:
     double       penalty        = 100;

@@ -170,18 +170,22 @@ namespace bsmpm
      * @p update_stress the stress is left alone (a nonlinear model has
      * stored it already, ConstitutiveUpdate::commit()), without
      * @p update_strain the strain (finite strain: commit() stores the
-     * logarithmic strain).
+     * logarithmic strain). With a B-bar @p kernel, @p cell_moments (by
+     * active_cell_index, those the system was assembled with) give each
+     * cell's centroid, where the stress takes its volumetric strain; the
+     * stored strain stays the points' own.
      */
     MoveReport
     move(const Q1CellKernel                               &kernel,
          const LinearElasticMaterial                      &material,
          const LinearAlgebra::distributed::Vector<double> &increment,
          const LinearAlgebra::distributed::Vector<double> *prescribed = nullptr,
-         const std::vector<bool>   *support_cells                     = nullptr,
-         const SupportFunction     &support                           = {},
-         const std::vector<double> *cell_quality                      = nullptr,
-         const bool                 update_stress                     = true,
-         const bool                 update_strain                     = true);
+         const std::vector<bool>        *support_cells                = nullptr,
+         const SupportFunction          &support                      = {},
+         const std::vector<double>      *cell_quality                 = nullptr,
+         const bool                      update_stress                = true,
+         const bool                      update_strain                = true,
+         const std::vector<CellMoments> *cell_moments = nullptr);
 
     /** Finds the cell and owner of every point after move(). */
     void

@@ -58,6 +58,15 @@ namespace bsmpm
    * stiffness sum_p V_p B^T C B is a combination of six fixed 8x8 matrices
    * weighted by the CellMoments (method-notes Sec. 8), and reading the points
    * once per step is all the assembly costs.
+   *
+   * With B-bar (the default of the linear path, doc/b-bar.md) every point's
+   * volumetric strain theta = eps_xx + eps_yy is replaced by the mean over
+   * the cell's material, theta at the centroid (vs/v, vt/v) of the moments
+   * (theta is affine in the cell). For an isotropic C = lambda m m^T +
+   * mu diag(2, 2, 1) the B-bar stress is C eps + kappa (theta_bar - theta)
+   * (1, 1, 0) with kappa = lambda + mu, and the stiffness is the standard
+   * one minus kappa times the covariance of the points' volumetric strain
+   * columns: a rank-two update from the second central moments.
    */
   class Q1CellKernel
   {
@@ -67,11 +76,77 @@ namespace bsmpm
 
     /**
      * @p fe must be FESystem(FE_Q(1), 2): its numbering of local DoFs is read
-     * from it. @p C is the Voigt stiffness of the material.
+     * from it. @p C is the Voigt stiffness of the material. With
+     * @p b_bar the cell-mean volumetric strain replaces the points' own
+     * (C must then be isotropic).
      */
     Q1CellKernel(const FiniteElement<2> &fe,
                  const Tensor<1, 2>     &cell_size,
-                 const Tensor<2, 3>     &C);
+                 const Tensor<2, 3>     &C,
+                 const bool              b_bar = false);
+
+    /** Whether the volumetric strain is the cell's mean (B-bar). */
+    bool
+    uses_b_bar() const
+    {
+      return kappa > 0;
+    }
+
+    /**
+     * The local coordinates of the volume-weighted centroid of the moments
+     * @p m, where the volumetric strain takes its mean over the cell
+     * (B-bar); (0.5, 0.5) for an empty cell.
+     */
+    static Point<2>
+    centroid(const CellMoments &m)
+    {
+      return m.v > 0 ? Point<2>(m.vs / m.v, m.vt / m.v) : Point<2>(0.5, 0.5);
+    }
+
+    /**
+     * The stress of the strain coefficients @p e (strain_coefficients()) at
+     * @p st of a cell whose points have the centroid @p centroid: C eps,
+     * with B-bar plus kappa (theta(centroid) - theta(st)) (1, 1, 0).
+     */
+    Voigt
+    stress(const std::array<Voigt, 3> &e,
+           const Point<2>             &st,
+           const Point<2>             &centroid) const
+    {
+      const Voigt eps   = e[0] + st[0] * e[1] + st[1] * e[2];
+      Voigt       sigma = C * eps;
+      if (kappa > 0)
+        {
+          const double shift =
+            kappa * ((centroid[0] - st[0]) * (e[1][0] + e[1][1]) +
+                     (centroid[1] - st[1]) * (e[2][0] + e[2][1]));
+          sigma[0] += shift;
+          sigma[1] += shift;
+        }
+      return sigma;
+    }
+
+    /**
+     * The stress of shape function @p i at @p st: C B_i, with B-bar plus
+     * kappa (theta_i(centroid) - theta_i(st)) (1, 1, 0). What boundary
+     * terms (Nitsche, the implicit boundary's band) pair with the cell's
+     * stiffness.
+     */
+    Voigt
+    stress_column(const unsigned int i,
+                  const Point<2>    &st,
+                  const Point<2>    &centroid) const
+    {
+      Voigt sigma = C * strain_column(i, st);
+      if (kappa > 0)
+        {
+          const double shift = kappa * ((centroid[0] - st[0]) * theta_s[i] +
+                                        (centroid[1] - st[1]) * theta_t[i]);
+          sigma[0] += shift;
+          sigma[1] += shift;
+        }
+      return sigma;
+    }
 
     /** Bilinear shape values of the four vertices (lexicographic order). */
     static std::array<double, 4>
@@ -175,6 +250,15 @@ namespace bsmpm
     }
 
   private:
+    /** The material's Voigt stiffness. */
+    Tensor<2, 3> C;
+    /** B-bar: the bulk modulus lambda + mu of the in-plane split of C; 0
+     * for the standard strain. */
+    double kappa = 0;
+    /** The volumetric strain of the shape functions,
+     * theta_i(s, t) = theta0_i + s theta_s[i] + t theta_t[i]. */
+    LocalVector theta_s{}, theta_t{};
+
     std::array<unsigned int, dofs_per_cell> dof_vertex;
     std::array<unsigned int, dofs_per_cell> dof_component;
 
@@ -184,7 +268,8 @@ namespace bsmpm
     /**
      * The six 8x8 blocks multiplying v, vs, vt, vss, vtt, vst:
      * B0'CB0, B0'CBs + Bs'CB0, B0'CBt + Bt'CB0, Bs'CBs, Bt'CBt,
-     * Bs'CBt + Bt'CBs.
+     * Bs'CBt + Bt'CBs. With B-bar the last three less kappa gs gs',
+     * kappa gt gt', kappa (gs gt' + gt gs') (gs = theta_s, gt = theta_t).
      */
     std::array<std::array<double, dofs_per_cell * dofs_per_cell>, 6> blocks;
   };

@@ -69,6 +69,11 @@ namespace bsmpm
            const ConstitutiveModel     &model,
            const LinearElasticMaterial &material);
 
+    /** Whether "Material/Volumetric strain" is B-bar: what the linear path
+     * (Q1CellKernel) takes when create() returns no update. */
+    static bool
+    uses_b_bar(ParameterHandler &prm);
+
     enum class Kinematics
     {
       small_strain,

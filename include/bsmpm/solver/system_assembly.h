@@ -58,6 +58,10 @@ namespace bsmpm
       const ExactSolution *exact_solution;
       /** Gravitational acceleration (the body force is density times it). */
       Tensor<1, 2> gravity;
+      /** Whether the linear kernel takes the cell-mean volumetric strain
+       * (B-bar, "Material/Volumetric strain"); the boundary terms then pair
+       * the same B-bar stress with it. */
+      bool b_bar = false;
     };
 
     SystemAssembly(const Parts &parts, TimerOutput &timer);
@@ -248,10 +252,13 @@ namespace bsmpm
     Parts        parts;
     TimerOutput &timer;
 
-    std::unique_ptr<Q1CellKernel>  cell_kernel;
-    AffineConstraints<double>      system_constraints;
-    TrilinosWrappers::SparseMatrix system_matrix;
-    TrilinosWrappers::MPI::Vector  system_rhs;
+    std::unique_ptr<Q1CellKernel> cell_kernel;
+    /** The cell moments of the current assemble(), for the B-bar stress of
+     * the boundary terms (nullptr outside it). */
+    const std::vector<CellMoments> *assembly_moments = nullptr;
+    AffineConstraints<double>       system_constraints;
+    TrilinosWrappers::SparseMatrix  system_matrix;
+    TrilinosWrappers::MPI::Vector   system_rhs;
     /** Where the cells' entries lie in system_matrix. */
     CellScatter                    scatter;
     TrilinosWrappers::SparseMatrix boundary_fit_matrix;
