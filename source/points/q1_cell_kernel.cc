@@ -89,23 +89,6 @@ namespace bsmpm
           blocks[4][ij]         = product(Bt, Bt, i, j);
           blocks[5][ij]         = product(Bs, Bt, i, j) + product(Bt, Bs, i, j);
         }
-
-    // B-bar (doc/b-bar.md): K_bar = K - kappa (css gs gs^T + ctt gt gt^T +
-    // cst (gs gt^T + gt gs^T)) with the central moments css = vss - vs^2 / v,
-    // ctt = vtt - vt^2 / v, cst = vst - vs vt / v. The parts in vss, vtt and
-    // vst go into their blocks here; what is left is the rank-one
-    // kappa / v r r^T with r = vs gs + vt gt (add_stiffness()), so that the
-    // correction costs one 8x8 outer product per cell.
-    if (kappa > 0)
-      for (unsigned int i = 0; i < dofs_per_cell; ++i)
-        for (unsigned int j = 0; j < dofs_per_cell; ++j)
-          {
-            const unsigned int ij = i * dofs_per_cell + j;
-            blocks[3][ij] -= kappa * theta_s[i] * theta_s[j];
-            blocks[4][ij] -= kappa * theta_t[i] * theta_t[j];
-            blocks[5][ij] -=
-              kappa * (theta_s[i] * theta_t[j] + theta_t[i] * theta_s[j]);
-          }
   }
 
 
@@ -156,18 +139,19 @@ namespace bsmpm
         // B-bar: minus kappa sum_p V_p (g_p - g_bar)(g_p - g_bar)^T, with
         // g_p - g_bar = (s - s_bar) theta_s + (t - t_bar) theta_t: the
         // central second moments times the volumetric columns
-        // (doc/b-bar.md). Their vss, vtt, vst parts are in the blocks
-        // (constructor); the rest is kappa / v r r^T, r = vs gs + vt gt.
-        LocalVector  r;
-        const double scale = kappa / m.v;
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          r[i] = m.vs * theta_s[i] + m.vt * theta_t[i];
+        // (doc/b-bar.md).
+        const double css = m.vss - m.vs * m.vs / m.v;
+        const double ctt = m.vtt - m.vt * m.vt / m.v;
+        const double cst = m.vst - m.vs * m.vt / m.v;
+        LocalVector  a, b;
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           {
-            const double ri = scale * r[i];
-            for (unsigned int j = 0; j < dofs_per_cell; ++j)
-              k[i * dofs_per_cell + j] += ri * r[j];
+            a[i] = kappa * (css * theta_s[i] + cst * theta_t[i]);
+            b[i] = kappa * (cst * theta_s[i] + ctt * theta_t[i]);
           }
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+            k[i * dofs_per_cell + j] -= a[i] * theta_s[j] + b[i] * theta_t[j];
       }
   }
 

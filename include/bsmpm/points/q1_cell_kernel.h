@@ -268,8 +268,7 @@ namespace bsmpm
     /**
      * The six 8x8 blocks multiplying v, vs, vt, vss, vtt, vst:
      * B0'CB0, B0'CBs + Bs'CB0, B0'CBt + Bt'CB0, Bs'CBs, Bt'CBt,
-     * Bs'CBt + Bt'CBs. With B-bar the last three less kappa gs gs',
-     * kappa gt gt', kappa (gs gt' + gt gs') (gs = theta_s, gt = theta_t).
+     * Bs'CBt + Bt'CBs.
      */
     std::array<std::array<double, dofs_per_cell * dofs_per_cell>, 6> blocks;
   };
