@@ -71,6 +71,7 @@ namespace bsmpm
     LinearSolver::declare_parameters(prm);
     NewtonSolver::declare_parameters(prm);
     CollapseDetector::declare_parameters(prm);
+    DisplacementControl::declare_parameters(prm);
     StrengthReduction::declare_parameters(prm);
     ExactSolution::declare_parameters(prm);
     OutputWriter::declare_parameters(prm);
@@ -105,6 +106,7 @@ namespace bsmpm
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
     collapse_detector.parse_parameters(prm);
+    displacement_control.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
     if (this->finite_strain())
@@ -216,8 +218,26 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
-    collapse_detector.initialize(constitutive_update != nullptr,
-                                 boundary_curves.prescribe_displacement());
+    if (displacement_control.enabled())
+      {
+        // What the bordered Newton iterations do not handle is refused here.
+        AssertThrow(constitutive_update && !this->finite_strain() &&
+                      !boundary_curves.prescribe_displacement() &&
+                      !checkpoint.resuming(),
+                    ExcMessage(
+                      "Loading/Control = displacement needs a nonlinear "
+                      "material in small strain, no prescribed "
+                      "displacement on the boundary curves, and no resumed "
+                      "checkpoint (the load factor is not in it)."));
+        displacement_control.locate(grid);
+        pcout << "displacement control at the vertex "
+              << displacement_control.vertex() << ", "
+              << displacement_control.displacement_increment()
+              << " m per step\n";
+      }
+    else
+      collapse_detector.initialize(constitutive_update != nullptr,
+                                   boundary_curves.prescribe_displacement());
   }
 
 
@@ -398,7 +418,13 @@ namespace bsmpm
             const double     load_factor = double(step) / n_load_steps;
             RunSummary::Step record;
             record.number = step;
-            advance(step, double(step - 1) / n_load_steps, load_factor, record);
+            if (displacement_control.enabled())
+              advance_under_displacement_control(step, record);
+            else
+              advance(step,
+                      double(step - 1) / n_load_steps,
+                      load_factor,
+                      record);
             const bool collapsed = collapse_detector.collapsed();
             // A step that collapsed before any increment converged leaves
             // the body as the step before: nothing to record.
@@ -467,7 +493,12 @@ namespace bsmpm
       }
     if (boundary_curves.has_loads())
       {
-        const Tensor<1, 2> force = neumann_loads.resultant(communicator);
+        // Under displacement control the last assemble() had the load
+        // factor of the step's start.
+        const Tensor<1, 2> force =
+          displacement_control.enabled() ?
+            controlled_load_factor * unit_traction_resultant :
+            neumann_loads.resultant(communicator);
         run_summary.quantities["traction_resultant_x"] = force[0];
         run_summary.quantities["traction_resultant_y"] = force[1];
       }
@@ -569,6 +600,96 @@ namespace bsmpm
     // The step's own factor where it finished (the sum of cut increments
     // may differ from it in the last bits).
     record.load_factor = collapse_detector.collapsed() ? lambda : to;
+  }
+
+
+
+  void
+  Scene::advance_under_displacement_control(const unsigned int step,
+                                            RunSummary::Step  &record)
+  {
+    const double step_increment = displacement_control.displacement_increment();
+    double       done           = 0;
+    double       portion        = step_increment;
+    unsigned int cuts           = 0;
+    record.increments           = 0;
+    while (done < step_increment * (1 - 1e-12))
+      {
+        portion = std::min(portion, step_increment - done);
+        if (points_moved)
+          {
+            TimerOutput::Scope t(timer, "sort points");
+            points.sort_into_cells();
+            points_moved = false;
+          }
+        compute_cell_moments();
+        assembly->make_constraints(cell_moments);
+        has_prescribed = false;
+        cell_quality =
+          assembly->support_qualities(cell_moments, constitutive_update.get());
+        if (cuts > 0)
+          {
+            const double factor = std::pow(10., std::min(cuts, 2u));
+            for (auto &q : cell_quality)
+              if (q > 0)
+                q /= factor;
+          }
+        // The loads of load factor 1, then the system at the load factor
+        // reached: the load increment is the Newton iterations' unknown.
+        assembly->reference_loads(cell_moments, reference_loads);
+        if (boundary_curves.has_loads())
+          unit_traction_resultant = neumann_loads.resultant(communicator);
+        assembly->assemble(
+          controlled_load_factor, 0., cell_moments, cell_quality, nullptr);
+        assembly->check_loads_finite(step);
+        constitutive_update->set_body_force(controlled_load_factor *
+                                            material.density() * gravity);
+
+        IncrementSolver::LinearSolves solves;
+        double                        load_increment = 0;
+        const NewtonSolver::Result    result =
+          increment_solver->solve_controlled(displacement_control,
+                                             portion,
+                                             reference_loads,
+                                             increment,
+                                             load_increment,
+                                             solves);
+        record.solver            = solves.method;
+        record.relative_residual = solves.relative_residual;
+        record.iterations        = solves.iterations;
+        record.refinement_steps += solves.refinement_steps;
+        for (const auto &iteration : result.iterations)
+          {
+            record.newton_residuals.push_back(iteration.relative_residual);
+            record.newton_corrections.push_back(iteration.relative_correction);
+          }
+        if (!result.converged)
+          {
+            newton.report_failure(result,
+                                  step,
+                                  controlled_load_factor,
+                                  load_increment,
+                                  cuts,
+                                  pcout.is_active() ? &pcout.get_stream() :
+                                                      nullptr);
+            ++cuts;
+            portion /= 2;
+            continue;
+          }
+        {
+          TimerOutput::Scope t(timer, "update points");
+          record.n_yielded = constitutive_update->commit(
+            points, grid, assembly->kernel(), increment, nullptr);
+        }
+        record.n_active_cells = assembly->n_active_cells();
+        move_points(step, load_increment);
+        points_moved = true;
+        update_curves(step);
+        controlled_load_factor += load_increment;
+        done += portion;
+        ++record.increments;
+      }
+    record.load_factor = controlled_load_factor;
   }
 
 

@@ -88,6 +88,13 @@ namespace bsmpm
     const Point<2> bracket   = ParameterTools::get_point(prm, "Bracket");
     const double   tolerance = prm.get_double("Tolerance");
     prm.leave_subsection();
+    prm.enter_subsection("Loading");
+    const bool load_control = prm.get("Control") == "load";
+    prm.leave_subsection();
+    // A trial collapses where load control stops at a limit load; under
+    // displacement control no trial would.
+    AssertThrow(load_control,
+                ExcMessage("Strength reduction needs Loading/Control = load."));
     AssertThrow(bracket[0] > 0 && bracket[1] > bracket[0],
                 ExcMessage("Strength reduction/Bracket: give two factors "
                            "0 < F_low < F_high, got " +

@@ -28,6 +28,7 @@
 #include <bsmpm/solver/collapse_detector.h>
 #include <bsmpm/solver/constitutive_update.h>
 #include <bsmpm/solver/cut_cell_quadrature.h>
+#include <bsmpm/solver/displacement_control.h>
 #include <bsmpm/solver/increment_solver.h>
 #include <bsmpm/solver/linear_solver.h>
 #include <bsmpm/solver/newton_solver.h>
@@ -128,6 +129,15 @@ namespace bsmpm
             const double       from,
             const double       to,
             RunSummary::Step  &record);
+    /**
+     * Load step @p step under displacement control: the control
+     * displacement grows by its increment (halved where Newton fails), the
+     * load factor follows (DisplacementControl). Fills @p record with the
+     * load factor reached.
+     */
+    void
+    advance_under_displacement_control(const unsigned int step,
+                                       RunSummary::Step  &record);
     /** Newton iterations of a nonlinear material for the assembled load
      * increment @p delta from @p lambda, cut @p cuts times so far; commits
      * the points' state if they converge. Returns whether they did. */
@@ -164,8 +174,14 @@ namespace bsmpm
     std::string  scene_name;
     unsigned int n_load_steps = 1;
     /** The constitutive model's strength is divided by this. */
-    double                             strength_factor = 1;
-    CollapseDetector                   collapse_detector;
+    double              strength_factor = 1;
+    CollapseDetector    collapse_detector;
+    DisplacementControl displacement_control;
+    /** Under displacement control: the load factor reached, the loads of
+     * load factor 1 and their traction resultant. */
+    double                             controlled_load_factor = 0;
+    TrilinosWrappers::MPI::Vector      reference_loads;
+    Tensor<1, 2>                       unit_traction_resultant;
     Tensor<1, 2>                       gravity;
     BackgroundGrid                     grid;
     LinearElasticMaterial              material;

@@ -139,6 +139,107 @@ namespace bsmpm
 
 
 
+  NewtonSolver::Result
+  IncrementSolver::solve_controlled(
+    const DisplacementControl                  &control,
+    const double                                target,
+    const TrilinosWrappers::MPI::Vector        &loads,
+    LinearAlgebra::distributed::Vector<double> &increment,
+    double                                     &load_increment,
+    LinearSolves                               &solves)
+  {
+    const BackgroundGrid     &grid     = parts.grid;
+    SystemAssembly           &assembly = parts.assembly;
+    const ConstitutiveUpdate &update   = *parts.constitutive_update;
+    const MaterialPoints     &points   = parts.points;
+    AssertThrow(update.kinematics() ==
+                    ConstitutiveUpdate::Kinematics::small_strain &&
+                  update.symmetric_tangent(),
+                ExcMessage("Loading/Control = displacement needs small strain "
+                           "and a symmetric tangent."));
+
+    const auto solve = [&](const TrilinosWrappers::MPI::Vector &rhs,
+                           TrilinosWrappers::MPI::Vector       &solution) {
+      TimerOutput::Scope t(timer, "solve");
+      solution.reinit(grid.locally_owned_dofs(), grid.mpi_communicator());
+      const auto report = parts.linear_solver.solve(assembly.tangent(),
+                                                    solution,
+                                                    rhs,
+                                                    grid.dof_handler());
+      assembly.constraints().distribute(solution);
+      ++solves.n_solves;
+      solves.method = report.method;
+      solves.iterations += report.iterations;
+      solves.refinement_steps += report.refinement_steps;
+      solves.relative_residual = report.relative_residual;
+      return report.iterations;
+    };
+
+    // R(x, d lambda) = R_0(x) + d lambda F_ref: R_0 what newton_system()
+    // assembles at the last converged load factor.
+    TrilinosWrappers::MPI::Vector residual, a, b, correction;
+    double                        last_load_correction = 0;
+    const auto                    evaluate             = [&]() {
+      assembly.newton_system(update, points, increment, nullptr);
+      residual = assembly.residual();
+      residual.add(load_increment, loads);
+      return residual.l2_norm();
+    };
+
+    increment = 0;
+    increment.update_ghost_values();
+    load_increment = 0;
+    // The scale of the tolerance: |R| at zero increment with the load
+    // increment that the start's tangent needs for the prescribed
+    // displacement (as |R(0)| of a load-controlled step holds its load
+    // increment).
+    evaluate();
+    solve(loads, b);
+    const double cb = control.value(b);
+    AssertThrow(cb != 0.,
+                ExcMessage("Loading/Control = displacement: the loads do not "
+                           "move the control vertex (it is held, or outside "
+                           "the body)."));
+    residual.add(target / cb, loads);
+    const double reference = residual.l2_norm();
+    // Start from that predictor, x = (target / c.b) b: it meets the
+    // control condition already.
+    load_increment = target / cb;
+    for (const auto i : grid.locally_owned_dofs())
+      increment(i) = load_increment * b(i);
+    increment.update_ghost_values();
+
+    return parts.newton.solve(
+      reference,
+      evaluate,
+      [&]() {
+        const unsigned int iterations = solve(residual, a) + solve(loads, b);
+        // Batoz and Dhatt: the load correction that brings c . x to the
+        // target after dx = a + d(d lambda) b.
+        const double d_lambda =
+          (target - control.value(increment) - control.value(a)) /
+          control.value(b);
+        correction = a;
+        correction.add(d_lambda, b);
+        for (const auto i : grid.locally_owned_dofs())
+          increment(i) += correction(i);
+        increment.update_ghost_values();
+        load_increment += d_lambda;
+        last_load_correction = d_lambda;
+        const double size    = increment.l2_norm();
+        return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
+                              iterations);
+      },
+      [&](const double alpha) {
+        for (const auto i : grid.locally_owned_dofs())
+          increment(i) -= alpha * correction(i);
+        increment.update_ghost_values();
+        load_increment -= alpha * last_load_correction;
+      });
+  }
+
+
+
   void
   IncrementSolver::accept(
     const LinearAlgebra::distributed::Vector<double> &increment,

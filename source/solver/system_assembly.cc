@@ -323,6 +323,51 @@ namespace bsmpm
 
 
   void
+  SystemAssembly::reference_loads(const std::vector<CellMoments> &moments,
+                                  TrilinosWrappers::MPI::Vector  &loads)
+  {
+    AssertThrow(!finite_strain,
+                ExcMessage("Displacement control is for small strain only: "
+                           "in finite strain the loads follow the body."));
+    TimerOutput::Scope t(timer, "assembly");
+    loads.reinit(system_rhs, false);
+    const Tensor<1, 2> body_force = parts.material.density() * parts.gravity;
+    if (body_force.norm() > 0)
+      {
+        constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
+        Vector<double>                       cell_rhs(n);
+        std::vector<types::global_dof_index> dof_indices(n);
+        for (const auto &cell :
+             parts.grid.dof_handler().active_cell_iterators())
+          {
+            if (!cell->is_locally_owned())
+              continue;
+            const CellMoments &m = moments[cell->active_cell_index()];
+            if (m.v == 0.)
+              continue;
+            cell_rhs = 0;
+            cell_kernel->add_body_force(m, body_force, cell_rhs);
+            cell->get_dof_indices(dof_indices);
+            system_constraints.distribute_local_to_global(cell_rhs,
+                                                          dof_indices,
+                                                          loads);
+          }
+      }
+    if (parts.curves.has_loads())
+      parts.neumann_loads.assemble(parts.curves,
+                                   parts.grid,
+                                   *cell_kernel,
+                                   parts.exact_solution,
+                                   1.,
+                                   system_constraints,
+                                   loads,
+                                   nullptr);
+    loads.compress(VectorOperation::add);
+  }
+
+
+
+  void
   SystemAssembly::assemble_support_terms(
     const double                                      increment_factor,
     const LinearAlgebra::distributed::Vector<double> *prescribed)

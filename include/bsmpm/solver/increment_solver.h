@@ -10,6 +10,7 @@
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/solver/constitutive_update.h>
+#include <bsmpm/solver/displacement_control.h>
 #include <bsmpm/solver/linear_solver.h>
 #include <bsmpm/solver/newton_solver.h>
 #include <bsmpm/solver/system_assembly.h>
@@ -73,6 +74,21 @@ namespace bsmpm
                  const LinearAlgebra::distributed::Vector<double> *prescribed,
                  LinearAlgebra::distributed::Vector<double>       &increment,
                  LinearSolves                                     &solves);
+
+    /**
+     * Newton iterations under displacement control (DisplacementControl)
+     * for the system assembled at the last converged load factor: the
+     * increment @p increment and the load factor increment @p load_increment
+     * such that R_0(x) + d lambda @p loads = 0 and control.value(x) =
+     * @p target. Two solves per iteration with the same tangent.
+     */
+    NewtonSolver::Result
+    solve_controlled(const DisplacementControl                  &control,
+                     const double                                target,
+                     const TrilinosWrappers::MPI::Vector        &loads,
+                     LinearAlgebra::distributed::Vector<double> &increment,
+                     double                                     &load_increment,
+                     LinearSolves                               &solves);
 
     /** Keeps the converged @p increment of load increment @p delta as the
      * start of the next Newton iterations. */

@@ -96,6 +96,18 @@ namespace bsmpm
              const LinearAlgebra::distributed::Vector<double> *prescribed);
 
     /**
+     * The loads of load factor 1 (body force and tractions) with the
+     * constraints of the last make_constraints(), into @p loads: the
+     * derivative of the residual by the load factor, for displacement
+     * control (small strain only). The traction resultant of
+     * NeumannLoads is then that of load factor 1, until the next
+     * assemble().
+     */
+    void
+    reference_loads(const std::vector<CellMoments> &moments,
+                    TrilinosWrappers::MPI::Vector  &loads);
+
+    /**
      * The Newton system of a nonlinear material at the increment
      * @p increment (ghosted, zero at constrained DoFs) after assemble()
      * without the material (leave_material_to_points()): tangent
