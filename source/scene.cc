@@ -66,6 +66,7 @@ namespace bsmpm
     NeumannLoads::declare_parameters(prm);
     ImplicitBoundary::declare_parameters(prm);
     NitscheBoundary::declare_parameters(prm);
+    CurveContact::declare_parameters(prm);
     GhostPenalty::declare_parameters(prm);
     CutCellQuadrature::declare_parameters(prm);
     LinearSolver::declare_parameters(prm);
@@ -99,8 +100,13 @@ namespace bsmpm
     if (strength_factor != 1.)
       constitutive_model =
         constitutive_model->with_reduced_strength(strength_factor);
-    constitutive_update =
-      ConstitutiveUpdate::create(prm, *constitutive_model, material);
+    contact.parse_parameters(prm);
+    // Contact makes every run nonlinear: Newton iterations decide where the
+    // curves touch.
+    constitutive_update = ConstitutiveUpdate::create(prm,
+                                                     *constitutive_model,
+                                                     material,
+                                                     contact.enabled());
     linear_b_bar = !constitutive_update && ConstitutiveUpdate::uses_b_bar(prm);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
@@ -170,7 +176,7 @@ namespace bsmpm
         }
       cut_cell_quadrature.initialize(boundary_curves);
     }
-    InputChecks::check_supports(grid, boundary_curves);
+    InputChecks::check_supports(grid, boundary_curves, contact.enabled());
     {
       TimerOutput::Scope t(timer, "setup: system");
       assembly = std::make_unique<SystemAssembly>(
@@ -187,6 +193,11 @@ namespace bsmpm
         timer);
       assembly->setup();
       assembly->keep_support_terms(reactions.curves());
+      if (contact.enabled())
+        {
+          assembly->use_contact(&contact);
+          step_output.show_contact(contact);
+        }
       if (constitutive_update)
         {
           assembly->leave_material_to_points(&points);
@@ -223,11 +234,12 @@ namespace bsmpm
         // What the bordered Newton iterations do not handle is refused here.
         AssertThrow(constitutive_update && !this->finite_strain() &&
                       !boundary_curves.prescribe_displacement() &&
-                      !checkpoint.resuming(),
+                      !contact.enabled() && !checkpoint.resuming(),
                     ExcMessage(
                       "Loading/Control = displacement needs a nonlinear "
                       "material in small strain, no prescribed "
-                      "displacement on the boundary curves, and no resumed "
+                      "displacement on the boundary curves, no rigid "
+                      "bodies, and no resumed "
                       "checkpoint (the load factor is not in it)."));
         displacement_control.locate(grid);
         pcout << "displacement control at the vertex "
@@ -237,7 +249,13 @@ namespace bsmpm
       }
     else
       collapse_detector.initialize(constitutive_update != nullptr,
-                                   boundary_curves.prescribe_displacement());
+                                   boundary_curves.prescribe_displacement() ||
+                                     contact.enabled());
+    // The friction history lives in memory only.
+    AssertThrow(!(contact.enabled() && checkpoint.resuming()),
+                ExcMessage("A run with rigid bodies cannot be resumed from a "
+                           "checkpoint yet: the contact's friction history "
+                           "is not in it."));
   }
 
 
@@ -505,6 +523,7 @@ namespace bsmpm
 
     if (constitutive_update)
       run_summary.quantities["yielded_points"] = record.n_yielded;
+    contact.record(run_summary.quantities);
     collapse_detector.record(run_summary.quantities);
   }
 
@@ -566,6 +585,12 @@ namespace bsmpm
             double &largest = run_summary.quantities["condition_estimate"];
             largest         = std::max(largest, estimate);
           }
+        if (contact.enabled())
+          contact.begin_increment(boundary_curves,
+                                  grid,
+                                  material.penalty_modulus(),
+                                  lambda,
+                                  lambda + delta);
         if (constitutive_update)
           {
             if (!solve_nonlinear(step, lambda, delta, cuts, record))
@@ -589,6 +614,12 @@ namespace bsmpm
         // The increment's size per unit load, before the points take it.
         const bool collapsed = collapse_detector.converged_increment(
           step, lambda, delta, increment.linfty_norm());
+        if (contact.enabled())
+          contact.finish_increment(boundary_curves,
+                                   grid,
+                                   assembly->kernel(),
+                                   increment,
+                                   has_prescribed ? &prescribed : nullptr);
         move_points(step, delta);
         points_moved = true;
         update_curves(step);

@@ -13,6 +13,7 @@
 #include <bsmpm/boundary/neumann_loads.h>
 #include <bsmpm/boundary/nitsche_boundary.h>
 #include <bsmpm/boundary/support_reaction.h>
+#include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/geometry/body_region.h>
 #include <bsmpm/io/checkpoint.h>
@@ -208,6 +209,7 @@ namespace bsmpm
     NeumannLoads                     neumann_loads;
     ImplicitBoundary                 implicit_boundary;
     NitscheBoundary                  nitsche_boundary;
+    CurveContact                     contact;
     GhostPenalty                     ghost_penalty;
     SupportReaction                  reactions;
     CutCellQuadrature                cut_cell_quadrature;

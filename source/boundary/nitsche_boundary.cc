@@ -78,16 +78,11 @@ namespace bsmpm
     const QGauss<1>        gauss(n_gauss_points);
     // The consistency term pairs the traction of the material's stiffest
     // mode with the boundary: for an isotropic material the volumetric one,
-    // 2 kappa with the in-plane bulk modulus kappa = (C_00 + C_01) / 2 =
-    // lambda + mu, which grows without bound as nu -> 0.5 in plane strain.
-    // The penalty must outgrow it to keep the form coercive: scale it by
-    // max(E, kappa). Up to nu = 0.3 in plane strain (kappa <= 0.96 E), and
-    // in plane stress for every nu (kappa = E / (2 (1 - nu)) <= E), that
-    // is E, as before; at nu = 0.499 it is 167 E (doc/b-bar.md).
-    const Tensor<2, 3> &C     = material.stiffness();
-    const double        kappa = (C[0][0] + C[0][1]) / 2;
-    const double beta = penalty * std::max(material.youngs_modulus(), kappa) /
-                        grid.min_cell_size();
+    // 2 kappa, which grows without bound as nu -> 0.5 in plane strain. The
+    // penalty must outgrow it to keep the form coercive: scale it by
+    // max(E, kappa) (doc/b-bar.md).
+    const double beta =
+      penalty * material.penalty_modulus() / grid.min_cell_size();
 
     FullMatrix<double>                   cell_matrix(n, n);
     Vector<double>                       cell_rhs(n);

@@ -52,7 +52,9 @@ namespace bsmpm
     prm.declare_entry("Inner radius",
                       "1",
                       Patterns::Double(0.),
-                      "annulus sector: inner radius.");
+                      "annulus sector: inner radius; 0 makes a circular "
+                      "sector (a disc, a half or a quarter disc), without an "
+                      "inner arc.");
     prm.declare_entry("Outer radius",
                       "2",
                       Patterns::Double(0.),
@@ -406,25 +408,32 @@ namespace bsmpm
     if (region_shape == Shape::annulus_sector)
       {
         const Sector &a = annulus;
-        const auto arc = [a](const double r, const double t0, const double t1) {
-          return [=](const double f) {
-            const double t = t0 + f * (t1 - t0);
-            return Point<2>(a.center[0] + r * std::cos(t),
-                            a.center[1] + r * std::sin(t));
-          };
+        // cos(3 pi / 2) is -1.8e-16, not 0: a sector edge on a grid face
+        // would start outside the grid. Directions within round-off of an
+        // axis are taken exactly along it.
+        const auto at = [a](const double r, const double t) {
+          double c = std::cos(t), s = std::sin(t);
+          c        = std::abs(c) < 1e-15 ? 0. : c;
+          s        = std::abs(s) < 1e-15 ? 0. : s;
+          return Point<2>(a.center[0] + r * c, a.center[1] + r * s);
         };
-        const auto ray = [a](const double t, const double r0, const double r1) {
-          return [=](const double f) {
-            const double r = r0 + f * (r1 - r0);
-            return Point<2>(a.center[0] + r * std::cos(t),
-                            a.center[1] + r * std::sin(t));
-          };
+        const auto arc = [at](const double r, const double t0, const double t1) {
+          return [=](const double f) { return at(r, t0 + f * (t1 - t0)); };
+        };
+        const auto ray = [at](const double t, const double r0, const double r1) {
+          return [=](const double f) { return at(r0 + f * (r1 - r0), t); };
         };
         names = {"start edge", "outer arc", "end edge", "inner arc"};
         parts = {ray(a.start_angle, a.inner_radius, a.outer_radius),
                  arc(a.outer_radius, a.start_angle, a.end_angle),
                  ray(a.end_angle, a.outer_radius, a.inner_radius),
                  arc(a.inner_radius, a.end_angle, a.start_angle)};
+        // Inner radius 0: a circular sector, whose edges meet at the centre.
+        if (a.inner_radius == 0.)
+          {
+            names.pop_back();
+            parts.pop_back();
+          }
       }
     else if (region_shape == Shape::polygon)
       {

@@ -75,6 +75,31 @@ namespace bsmpm
 
 
     void
+    write_outlines(std::ostream                             &out,
+                   const std::vector<std::vector<Point<2>>> &outlines)
+    {
+      std::vector<DataOutBase::Patch<1, 2>> patches;
+      for (unsigned int b = 0; b < outlines.size(); ++b)
+        for (unsigned int i = 0; i + 1 < outlines[b].size(); ++i)
+          {
+            DataOutBase::Patch<1, 2> patch;
+            patch.reference_cell = ReferenceCells::Line;
+            patch.n_subdivisions = 1;
+            patch.data.reinit(1, 2);
+            for (unsigned int end = 0; end < 2; ++end)
+              {
+                patch.vertices[end] = outlines[b][i + end];
+                patch.data(0, end)  = b + 1;
+              }
+            patch.patch_index = patches.size();
+            patches.push_back(patch);
+          }
+      write(out, patches, {"body"}, {});
+    }
+
+
+
+    void
     write_points(std::ostream                                     &out,
                  const BoundaryCurves                             &curves,
                  const std::vector<NeumannLoads::QuadraturePoint> &gauss_points,

@@ -149,15 +149,17 @@ namespace bsmpm
 
   void
   InputChecks::check_supports(const BackgroundGrid &grid,
-                              const BoundaryCurves &curves)
+                              const BoundaryCurves &curves,
+                              const bool            rigid_bodies)
   {
     const bool curve_supports =
       curves.has_supports(BoundaryCurve::DirichletMethod::implicit_boundary) ||
       curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
-    AssertThrow(grid.has_face_conditions() || curve_supports,
+    AssertThrow(grid.has_face_conditions() || curve_supports || rigid_bodies,
                 ExcMessage("The body has no support at all: no grid face "
-                           "condition and no fixed, roller or displacement "
-                           "condition on a boundary curve. Its stiffness "
-                           "cannot resist rigid motion; add a support."));
+                           "condition, no fixed, roller or displacement "
+                           "condition on a boundary curve and no rigid body "
+                           "to rest on. Its stiffness cannot resist rigid "
+                           "motion; add a support."));
   }
 } // namespace bsmpm

@@ -7,6 +7,7 @@
 #include <bsmpm/io/step_output.h>
 
 #include <algorithm>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -60,6 +61,23 @@ namespace bsmpm
     write_points(step, load_factor);
     if (!boundary_curves.empty())
       write_curves(step, load_factor);
+    if (contact != nullptr)
+      {
+        std::vector<std::vector<Point<2>>> outlines;
+        for (const auto &body : contact->rigid_bodies())
+          outlines.push_back(body.outline(load_factor));
+        output.write_serial_series(
+          "rigid_bodies", step, load_factor, [&](std::ostream &out) {
+            CurveOutput::write_outlines(out, outlines);
+          });
+        std::ostringstream tractions;
+        contact->write_tractions(tractions, grid.mpi_communicator());
+        const std::string number = Utilities::int_to_string(step, 4);
+        output.write_root_file("contact-" + number + ".csv",
+                               [&](std::ostream &out) {
+                                 out << tractions.str();
+                               });
+      }
 
     output.write_collections();
   }

@@ -170,7 +170,8 @@ namespace bsmpm
   std::unique_ptr<ConstitutiveUpdate>
   ConstitutiveUpdate::create(ParameterHandler            &prm,
                              const ConstitutiveModel     &model,
-                             const LinearElasticMaterial &material)
+                             const LinearElasticMaterial &material,
+                             const bool                   newton)
   {
     prm.enter_subsection("Material");
     const bool b_bar         = prm.get("Volumetric strain") == "B-bar";
@@ -181,7 +182,7 @@ namespace bsmpm
                 ExcMessage("Material/Kinematics = finite strain needs "
                            "'Model = plane strain': in plane stress the "
                            "thickness stretch would be a further unknown."));
-    if (!model.is_linear() || finite_strain)
+    if (!model.is_linear() || finite_strain || newton)
       return std::make_unique<ConstitutiveUpdate>(model,
                                                   b_bar && !model.is_linear(),
                                                   finite_strain ?

@@ -103,7 +103,7 @@ namespace bsmpm
         // A pressure that follows the boundary within the step (finite
         // strain) has an unsymmetric load stiffness.
         const bool symmetric =
-          update.symmetric_tangent() &&
+          update.symmetric_tangent() && assembly.contact_tangent_symmetric() &&
           !(update.kinematics() ==
               ConstitutiveUpdate::Kinematics::finite_strain &&
             parts.boundary_curves.has_loads());

@@ -507,9 +507,26 @@ namespace bsmpm
                                system_constraints,
                                tangent_matrix,
                                internal_force);
+    // Contact forces are loads that depend on the increment: they join the
+    // residual with the sign of the loads and their derivative the tangent.
+    TrilinosWrappers::MPI::Vector contact_force;
+    if (contact != nullptr)
+      {
+        contact_force.reinit(newton_residual);
+        contact_symmetric = contact->add_newton_terms(grid,
+                                                      *cell_kernel,
+                                                      increment,
+                                                      prescribed,
+                                                      system_constraints,
+                                                      tangent_matrix,
+                                                      contact_force);
+        contact_force.compress(VectorOperation::add);
+      }
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
     newton_residual -= internal_force;
+    if (contact != nullptr)
+      newton_residual += contact_force;
     yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
     return newton_residual.l2_norm();
   }

@@ -12,7 +12,7 @@ import sys
 # and the driver (source/main.cc) stand above all of them; the driver's
 # parts (command line, parameter files, sweeps, error reports) are io.
 LAYERS = ["base", "geometry", "materials", "points", "verification",
-          "boundary", "solver", "io"]
+          "boundary", "contact", "solver", "io"]
 TOP = len(LAYERS)
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else

@@ -28,6 +28,12 @@ namespace bsmpm
                  const BoundaryCurves &curves,
                  const unsigned int    samples = 16);
 
+    /** Closed polylines (the outlines of rigid bodies); field: body
+     * (1-based). */
+    void
+    write_outlines(std::ostream                             &out,
+                   const std::vector<std::vector<Point<2>>> &outlines);
+
     /**
      * Vertices with a field "kind": 0 boundary point, 1 cut of a curve by a
      * grid line, 2 Gauss point of a load (with its traction), 3 quadrature

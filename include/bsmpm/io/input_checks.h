@@ -64,9 +64,13 @@ namespace bsmpm
           const std::vector<std::pair<std::string, Point<2>>> &named_points);
 
     /** Throws if nothing holds the body against rigid motion: no face
-     * condition of @p grid and no support on @p curves. */
+     * condition of @p grid, no support on @p curves and no
+     * @p rigid_bodies (contact may hold it; if it does not, the first
+     * linear solve says so). */
     static void
-    check_supports(const BackgroundGrid &grid, const BoundaryCurves &curves);
+    check_supports(const BackgroundGrid &grid,
+                   const BoundaryCurves &curves,
+                   const bool            rigid_bodies);
 
     /** MemAvailable of /proc/meminfo in bytes, or 0 if unknown. */
     static double

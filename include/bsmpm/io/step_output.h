@@ -6,6 +6,7 @@
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/implicit_boundary.h>
 #include <bsmpm/boundary/neumann_loads.h>
+#include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/io/output_writer.h>
 #include <bsmpm/points/material_points.h>
@@ -45,6 +46,15 @@ namespace bsmpm
           const std::vector<double>                        &fill_fractions,
           const std::vector<double> &support_qualities) const;
 
+    /** Also writes the rigid bodies of @p contact: their outlines (series
+     * rigid_bodies) and the contact tractions along the curves
+     * (contact-NNNN.csv, CurveContact::write_tractions()). */
+    void
+    show_contact(const CurveContact &curve_contact)
+    {
+      contact = &curve_contact;
+    }
+
   private:
     void
     write_points(const unsigned int step, const double load_factor) const;
@@ -58,6 +68,7 @@ namespace bsmpm
     const BoundaryCurves   &boundary_curves;
     const NeumannLoads     &neumann_loads;
     const ImplicitBoundary &implicit_boundary;
+    const CurveContact     *contact = nullptr;
   };
 } // namespace bsmpm
 

@@ -4,6 +4,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
+
 namespace bsmpm
 {
   using namespace dealii;
@@ -55,6 +57,19 @@ namespace bsmpm
     youngs_modulus() const
     {
       return E;
+    }
+
+    /**
+     * The scale of a boundary penalty (Nitsche, contact): max(E, kappa)
+     * with the in-plane bulk modulus kappa = (C_00 + C_01) / 2 = lambda +
+     * mu, the stiffness of the material's stiffest mode. It is E up to
+     * nu = 0.3 in plane strain and for every nu in plane stress, and grows
+     * without bound as nu -> 0.5 in plane strain (167 E at nu = 0.499).
+     */
+    double
+    penalty_modulus() const
+    {
+      return std::max(E, (C[0][0] + C[0][1]) / 2);
     }
     double
     poissons_ratio() const

@@ -61,13 +61,16 @@ namespace bsmpm
     /**
      * The update that @p model needs with the kinematics and volumetric
      * strain of section "Material": null for a linear model in small
-     * strain, which the linear system integrates itself. Throws if finite
-     * strain is asked of a @p material that is not in plane strain.
+     * strain, which the linear system integrates itself, unless
+     * @p newton (something else, contact, needs Newton iterations). Throws
+     * if finite strain is asked of a @p material that is not in plane
+     * strain.
      */
     static std::unique_ptr<ConstitutiveUpdate>
     create(ParameterHandler            &prm,
            const ConstitutiveModel     &model,
-           const LinearElasticMaterial &material);
+           const LinearElasticMaterial &material,
+           const bool                   newton = false);
 
     /** Whether "Material/Volumetric strain" is B-bar: what the linear path
      * (Q1CellKernel) takes when create() returns no update. */

@@ -13,6 +13,7 @@
 #include <bsmpm/boundary/implicit_boundary.h>
 #include <bsmpm/boundary/neumann_loads.h>
 #include <bsmpm/boundary/nitsche_boundary.h>
+#include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/q1_cell_kernel.h>
@@ -161,6 +162,24 @@ namespace bsmpm
     }
 
     /**
+     * Contact of the curves with rigid bodies: newton_system() adds its
+     * forces and their derivative (CurveContact::add_newton_terms()).
+     */
+    void
+    use_contact(CurveContact *curve_contact)
+    {
+      contact = curve_contact;
+    }
+
+    /** Whether the contact terms of the last newton_system() kept the
+     * tangent symmetric (nothing slides). */
+    bool
+    contact_tangent_symmetric() const
+    {
+      return contact_symmetric;
+    }
+
+    /**
      * Which boundary curves (by index) assemble() keeps the supports'
      * terms (implicit boundary method, Nitsche) of apart, each in a matrix
      * of the system's pattern, for support_forces().
@@ -280,6 +299,8 @@ namespace bsmpm
     bool                           material_from_points = false;
     const MaterialPoints          *material_points      = nullptr;
     bool                           finite_strain        = false;
+    CurveContact                  *contact              = nullptr;
+    bool                           contact_symmetric    = true;
     /** keep_support_terms(): the curves, their supports' terms. */
     std::vector<unsigned int>                   support_curves;
     std::vector<TrilinosWrappers::SparseMatrix> support_matrices;

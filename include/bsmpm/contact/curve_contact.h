@@ -1,0 +1,206 @@
+#ifndef bsmpm_curve_contact_h
+#define bsmpm_curve_contact_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/contact/rigid_body.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * Contact of the body's B-spline boundary with rigid bodies
+   * (doc/contact.md). Every free stretch of every boundary curve is a
+   * candidate: where it touches a rigid body it takes the contact
+   * condition, where it leaves it it is free again, with no input.
+   *
+   * The condition is imposed by a penalty on the curve pieces in the cut
+   * cells, integrated with Gauss points on the spline of the step's start
+   * (the curve that the points define), moved by the displacement
+   * increment: at a Gauss point X, x = X + du(X), the gap g(x) to the rigid
+   * body (at the load factor the increment ends at) and its normal n give
+   * the pressure p_N = eps max(0, -g); with friction the tangential
+   * traction is a return map of Coulomb's law,
+   *
+   *   t_trial = t_previous . t - eps (du - du_rigid) . t,
+   *   t_T     = t_trial                      if |t_trial| <= mu p_N (stick),
+   *           = mu p_N sign(t_trial)         otherwise (slip),
+   *
+   * and the body feels the force p_N n + t_T t per unit length. The active
+   * set (which Gauss points touch, which slide) is decided anew in every
+   * Newton iteration, and the tangent is its exact derivative (a
+   * semi-smooth Newton method), unsymmetric while anything slides. The
+   * penalty eps = gamma max(E, kappa) / h is Nitsche's scale.
+   *
+   * The tangential traction of the last increment, the history of
+   * friction, is kept at the curves' points and interpolated along the
+   * segments.
+   */
+  class CurveContact
+  {
+  public:
+    /** Declares "Contact" and the "Rigid body N" subsections. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Whether the scene has rigid bodies. */
+    bool
+    enabled() const
+    {
+      return !bodies.empty();
+    }
+
+    const std::vector<RigidBody> &
+    rigid_bodies() const
+    {
+      return bodies;
+    }
+
+    /**
+     * Starts a load increment from load factor @p from to @p to: collects
+     * the Gauss points of the curves' free pieces in locally owned cells
+     * that can reach a rigid body in it. @p stiffness: the elastic scale
+     * max(E, kappa) of the penalty.
+     */
+    void
+    begin_increment(const BoundaryCurves &curves,
+                    const BackgroundGrid &grid,
+                    const double          stiffness,
+                    const double          from,
+                    const double          to);
+
+    /**
+     * Adds the contact forces on the body at the increment @p increment
+     * (ghosted; @p prescribed as for the points) to @p force and their
+     * derivative (with a minus: a stiffness) to @p tangent. Returns
+     * whether the tangent stays symmetric (no Gauss point slides), over
+     * all processes.
+     */
+    bool
+    add_newton_terms(
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   &tangent,
+      TrilinosWrappers::MPI::Vector                    &force);
+
+    /**
+     * After the increment converged at @p increment: the force on each
+     * rigid body and the length in contact, and the tangential tractions
+     * at the curves' points for the next increment. Call before the
+     * points move. Collective.
+     */
+    void
+    finish_increment(
+      const BoundaryCurves                             &curves,
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /** Adds rigid_body_N_force_x/y (the force of the body on the rigid
+     * body, N/m), _displacement_x/y, _contact_length, _sliding_length and
+     * _penetration (the largest) of the last finish_increment(). */
+    void
+    record(std::map<std::string, double> &quantities) const;
+
+    /** The Gauss points of the last finish_increment() on all processes
+     * (collective; written by process 0 only): body, x, y (where they
+     * touch), gap, p_N, t_T, ds, sliding, as CSV. */
+    void
+    write_tractions(std::ostream &out, const MPI_Comm communicator) const;
+
+  private:
+    /** A piece of free curve in one locally owned cell that can touch a
+     * rigid body in the increment, with its Gauss points at the
+     * increment's start. */
+    struct ContactPiece
+    {
+      unsigned int                body;
+      unsigned int                curve;
+      std::array<unsigned int, 2> cell;
+      /** The part of the rigid outline it faces (SurfacePoint::feature). */
+      unsigned int                feature;
+      double                      u_begin;
+      double                      u_end;
+      std::vector<Point<2>>       positions;
+      std::vector<double>         weights; ///< ds
+      /** The part of the outline each Gauss point measures its gap to:
+       * the nearest at the increment's start. */
+      std::vector<unsigned int> features;
+      /** The traction of the last increment, interpolated from the
+       * curve's points. */
+      std::vector<Tensor<1, 2>> previous;
+      double                    length = 0;
+    };
+
+    /** What contact does on a piece for a displacement increment. */
+    struct PieceState
+    {
+      bool         active     = false;
+      bool         sliding    = false;
+      double       gap        = 0; ///< mean over the piece
+      double       pressure   = 0;
+      double       tangential = 0;
+      Tensor<1, 2> normal; ///< mean normal of the rigid surface
+      Point<2>     midpoint;
+      /** Force on the body (N) and the piece's share of the rigid body's
+       * reaction is its opposite. */
+      Tensor<1, 2> resultant;
+      /** On the cell's DoFs: the force and minus its derivative. */
+      Vector<double>     force;
+      FullMatrix<double> stiffness;
+    };
+
+    PieceState
+    evaluate(const ContactPiece                &piece,
+             const BackgroundGrid              &grid,
+             const Q1CellKernel                &kernel,
+             const Q1CellKernel::LocalVector   &d) const;
+
+    std::vector<RigidBody> bodies;
+    double                 gamma          = 10;
+    unsigned int           n_gauss_points = 4;
+
+    double                  penalty = 0;
+    double                  from = 0, to = 0;
+    std::vector<ContactPiece> pieces;
+    /** Per curve and point: the traction on the body after the last
+     * increment (zero where no contact). */
+    std::vector<std::vector<Tensor<1, 2>>> point_tractions;
+
+    /** Of the last finish_increment(), per body. */
+    struct Resultant
+    {
+      Tensor<1, 2> force;
+      double       contact_length = 0;
+      double       sliding_length = 0;
+      double       penetration    = 0;
+    };
+    std::vector<Resultant> resultants;
+    /** The pieces' figures of the last finish_increment() on this
+     * process: body, x, y, gap, p_N, t_T, length, sliding. */
+    std::vector<double> last_tractions;
+  };
+} // namespace bsmpm
+
+#endif

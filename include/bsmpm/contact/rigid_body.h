@@ -1,0 +1,175 @@
+#ifndef bsmpm_rigid_body_h
+#define bsmpm_rigid_body_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The nearest point of a rigid outline to a point x, and what contact
+   * needs of it (doc/contact.md).
+   */
+  struct SurfacePoint
+  {
+    /** Signed distance of x from the outline: > 0 outside the rigid body,
+     * < 0 inside it (penetration). */
+    double gap = 0;
+    /** Outward unit normal of the rigid body at the nearest point: the
+     * gradient of the gap with respect to x. */
+    Tensor<1, 2> normal;
+    /** Distance from x to the centre about which the normal turns as x
+     * moves (|x - c| for a circle of centre c or at a corner); infinite
+     * on a straight edge, where the normal does not turn. The derivative
+     * of the normal by x is (I - n n) / radius. */
+    double turning_radius = std::numeric_limits<double>::infinity();
+    /** Which part of the outline is nearest: 2 k for the inside of edge k
+     * of a polygon, 2 k + 1 for its vertex k; 0 for a circle. Contact
+     * keeps one pressure per part and cell, so that a cell that holds the
+     * edge of a footing does not average the footing's base with the free
+     * surface beside it. */
+    unsigned int feature = 0;
+  };
+
+
+
+  /**
+   * The outline of a rigid body in its starting place: a polygon (corners
+   * rounded by a radius if wanted) or a circle. Rigid bodies translate only,
+   * so the outline never changes shape.
+   */
+  class RigidShape
+  {
+  public:
+    virtual ~RigidShape() = default;
+
+    /** The nearest point of the outline to @p x. */
+    virtual SurfacePoint
+    nearest(const Point<2> &x) const = 0;
+
+    /** As nearest(), measured to one part of the outline (@p feature of
+     * SurfacePoint), extended beyond its ends: the straight line of an
+     * edge, the circle round a corner. Contact measures the gap of a
+     * point in a load increment to the part that was nearest at the
+     * increment's start: a body pushed deep into a corner of a footing
+     * would otherwise find the footing's side nearer than its base and
+     * be pushed sideways. */
+    virtual SurfacePoint
+    to_feature(const Point<2> &x, const unsigned int feature) const = 0;
+
+    /** Points along the outline, counter-clockwise, closed (the last equals
+     * the first), for output. */
+    virtual std::vector<Point<2>>
+    outline() const = 0;
+
+    /** The largest distance of the outline from its first point: with it,
+     * a cheap bound skips points far from the body. */
+    virtual double
+    size() const = 0;
+
+    /** A point of the body (for the bound of size()). */
+    virtual Point<2>
+    reference_point() const = 0;
+  };
+
+
+
+  /**
+   * A rigid body of a scene (subsection "Rigid body N"): its shape, its
+   * prescribed translation as a function of the load factor, and the
+   * friction of its surface with the body's boundary curves.
+   */
+  class RigidBody
+  {
+  public:
+    /** Most rigid bodies in a scene. */
+    static constexpr unsigned int max_bodies = 4;
+
+    /** How the body's surface resists sliding. */
+    enum class Friction
+    {
+      smooth,     ///< no tangential traction
+      frictional, ///< Coulomb: |t_T| <= mu p_N, sliding beyond
+      rough       ///< no sliding while in contact
+    };
+
+    /** Declares subsections "Rigid body 1" .. "Rigid body 4". */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** The rigid bodies that @p prm defines (Shape other than none). */
+    static std::vector<RigidBody>
+    create_all(ParameterHandler &prm);
+
+    /** Name for messages and summary.json ("rigid_body_1"). */
+    const std::string &
+    name() const
+    {
+      return body_name;
+    }
+
+    /** The body's translation at load factor @p t. */
+    Tensor<1, 2>
+    displacement(const double t) const;
+
+    /** The nearest point of the body's outline, translated to load factor
+     * @p t, to @p x. */
+    SurfacePoint
+    nearest(const Point<2> &x, const double t) const
+    {
+      return shape->nearest(x - displacement(t));
+    }
+
+    /** As nearest(), to part @p feature of the outline (RigidShape::
+     * to_feature()). */
+    SurfacePoint
+    to_feature(const Point<2>    &x,
+               const double       t,
+               const unsigned int feature) const
+    {
+      return shape->to_feature(x - displacement(t), feature);
+    }
+
+    /** Whether @p x lies further than @p distance from the body at load
+     * factor @p t (a cheap test that may answer false for far points). */
+    bool
+    surely_further_than(const Point<2> &x,
+                        const double    t,
+                        const double    distance) const;
+
+    /** The outline at load factor @p t (closed polyline). */
+    std::vector<Point<2>>
+    outline(const double t) const;
+
+    Friction
+    friction() const
+    {
+      return surface_friction;
+    }
+
+    /** Coulomb's coefficient mu (frictional surfaces). */
+    double
+    friction_coefficient() const
+    {
+      return mu;
+    }
+
+  private:
+    std::string                        body_name;
+    std::shared_ptr<const RigidShape>  shape;
+    std::shared_ptr<FunctionParser<1>> motion;
+    Friction                           surface_friction = Friction::smooth;
+    double                             mu               = 0;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,421 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <bsmpm/contact/curve_contact.h>
+#include <bsmpm/points/material_points.h>
+
+#include <cmath>
+#include <iomanip>
+
+namespace bsmpm
+{
+  void
+  CurveContact::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry(
+      "Penalty",
+      "10",
+      Patterns::Double(0.),
+      "gamma in the contact penalty gamma max(E, kappa) / h: the pressure "
+      "per unit penetration, and the tangential traction per unit slip "
+      "while sticking. The penetration is about p h / (gamma E). Above "
+      "about 20 the pressure of one cell per piece is over-constrained "
+      "and alternates from cell to cell under a flat rigid base "
+      "(doc/contact.md).");
+    prm.declare_entry("Gauss points per piece",
+                      "4",
+                      Patterns::Integer(1, 100),
+                      "Gauss points on each piece of a free curve that can "
+                      "touch a rigid body.");
+    prm.leave_subsection();
+    RigidBody::declare_parameters(prm);
+  }
+
+
+
+  void
+  CurveContact::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    gamma          = prm.get_double("Penalty");
+    n_gauss_points = prm.get_integer("Gauss points per piece");
+    prm.leave_subsection();
+    bodies = RigidBody::create_all(prm);
+    AssertThrow(bodies.empty() || gamma > 0,
+                ExcMessage("Contact/Penalty must be positive."));
+    resultants.assign(bodies.size(), Resultant());
+  }
+
+
+
+  void
+  CurveContact::begin_increment(const BoundaryCurves &curves,
+                                const BackgroundGrid &grid,
+                                const double          stiffness,
+                                const double          load_from,
+                                const double          load_to)
+  {
+    const double h = grid.min_cell_size();
+    penalty        = gamma * stiffness / h;
+    from           = load_from;
+    to             = load_to;
+    pieces.clear();
+    const QGauss<1> gauss(n_gauss_points);
+    const auto     &all_curves = curves.get_curves();
+    point_tractions.resize(all_curves.size());
+    for (unsigned int c = 0; c < all_curves.size(); ++c)
+      {
+        const BoundaryCurve &curve = all_curves[c];
+        // A curve whose points changed in number starts without history.
+        if (point_tractions[c].size() != curve.positions.size())
+          point_tractions[c].assign(curve.positions.size(), Tensor<1, 2>());
+        const BSplineCurve &spline = *curve.spline;
+        for (const auto &piece : curve.pieces)
+          {
+            if (curve.condition_of_segment(piece.segment) != nullptr ||
+                grid.locally_owned_cell(piece.cell) ==
+                  grid.dof_handler().end())
+              continue;
+            const Point<2> middle =
+              spline.value((piece.u_begin + piece.u_end) / 2);
+            for (unsigned int b = 0; b < bodies.size(); ++b)
+              {
+                // Within two cells of the body where the increment ends,
+                // or of its path: a piece cannot move further in one
+                // increment.
+                const double reach =
+                  2 * h +
+                  (bodies[b].displacement(to) - bodies[b].displacement(from))
+                    .norm();
+                if (bodies[b].surely_further_than(middle, to, reach))
+                  continue;
+                if (bodies[b].nearest(middle, to).gap > reach)
+                  continue;
+                // The part of the outline the piece faces: that nearest to
+                // it before the increment moves anything.
+                const SurfacePoint nearest = bodies[b].nearest(middle, from);
+                // The pieces of a curve in one cell (one per segment there)
+                // that face one part of the rigid outline act as one: one
+                // pressure per cell, curve and part.
+                const bool joins = !pieces.empty() && pieces.back().body == b &&
+                                   pieces.back().curve == c &&
+                                   pieces.back().cell == piece.cell &&
+                                   pieces.back().feature == nearest.feature &&
+                                   pieces.back().u_end == piece.u_begin;
+                if (!joins)
+                  pieces.push_back(ContactPiece{b,
+                                                c,
+                                                piece.cell,
+                                                nearest.feature,
+                                                piece.u_begin,
+                                                piece.u_end,
+                                                {},
+                                                {},
+                                                {},
+                                                {},
+                                                0});
+                ContactPiece &contact_piece = pieces.back();
+                contact_piece.u_end         = piece.u_end;
+                const auto range = spline.segment_parameters(piece.segment);
+                const unsigned int k1 =
+                  (piece.segment + 1) % curve.positions.size();
+                const double du = piece.u_end - piece.u_begin;
+                for (unsigned int q = 0; q < gauss.size(); ++q)
+                  {
+                    const double u = piece.u_begin + gauss.point(q)[0] * du;
+                    const double f = (u - range[0]) / (range[1] - range[0]);
+                    contact_piece.positions.push_back(spline.value(u));
+                    contact_piece.features.push_back(
+                      bodies[b].nearest(contact_piece.positions.back(), from)
+                        .feature);
+                    contact_piece.weights.push_back(
+                      spline.derivative(u).norm() * du * gauss.weight(q));
+                    contact_piece.previous.push_back(
+                      (1 - f) * point_tractions[c][piece.segment] +
+                      f * point_tractions[c][k1]);
+                    contact_piece.length += contact_piece.weights.back();
+                  }
+              }
+          }
+      }
+  }
+
+
+
+  CurveContact::PieceState
+  CurveContact::evaluate(const ContactPiece              &piece,
+                         const BackgroundGrid            &grid,
+                         const Q1CellKernel              &kernel,
+                         const Q1CellKernel::LocalVector &d) const
+  {
+    constexpr unsigned int n    = Q1CellKernel::dofs_per_cell;
+    const RigidBody       &body = bodies[piece.body];
+    const unsigned int     n_q  = piece.positions.size();
+    const double           L    = piece.length;
+
+    // Where the Gauss points are after the increment, and the rigid
+    // surface nearest to them.
+    std::vector<std::array<Tensor<1, 2>, n>> N(n_q);
+    std::vector<Tensor<1, 2>>                u(n_q);
+    std::vector<SurfacePoint>                surface(n_q);
+    PieceState                               state;
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Point<2> st = grid.local_coordinates(piece.positions[q], piece.cell);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            N[q][i] = kernel.shape_value(i, st);
+            u[q] += d[i] * N[q][i];
+          }
+        surface[q] =
+          body.to_feature(piece.positions[q] + u[q], to, piece.features[q]);
+        state.gap += piece.weights[q] * surface[q].gap / L;
+        state.normal += piece.weights[q] * surface[q].normal;
+        state.midpoint += piece.weights[q] / L * (piece.positions[q] + u[q]);
+      }
+    state.normal /= state.normal.norm();
+    state.force.reinit(n);
+    state.stiffness.reinit(n, n);
+    // The piece's mean gap decides: a pressure per piece, constant along
+    // it, does not over-constrain the bilinear displacement as a pressure
+    // per Gauss point would (which made the pressure oscillate between
+    // zero and twice Hertz's).
+    // Touching within round-off counts, with zero pressure: a body that
+    // rests on a rigid one (and on nothing else) is held from the first
+    // iteration on, which starts from the touching place.
+    if (!(state.gap <= 1e-12 * grid.min_cell_size()))
+      return state;
+    state.active   = true;
+    state.pressure = std::max(-penalty * state.gap, 0.);
+
+    // G_i = int n . N_i ds: the derivative of L times the mean gap.
+    Vector<double> G(n), T(n);
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Tensor<1, 2> &nq = surface[q].normal;
+        const Tensor<1, 2>  tq({-nq[1], nq[0]});
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            G[i] += piece.weights[q] * (nq * N[q][i]);
+            T[i] += piece.weights[q] * (tq * N[q][i]);
+          }
+        state.resultant += piece.weights[q] * state.pressure * nq;
+        // p dn/dx with dn/dx = (I - n n) / rho where the surface turns.
+        const double rho = surface[q].turning_radius;
+        if (std::isfinite(rho) && rho > 0)
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < n; ++j)
+              state.stiffness(i, j) -=
+                piece.weights[q] * state.pressure / rho *
+                (N[q][i] * N[q][j] - (nq * N[q][i]) * (nq * N[q][j]));
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        state.force[i] = state.pressure * G[i];
+        for (unsigned int j = 0; j < n; ++j)
+          state.stiffness(i, j) += penalty / L * G[i] * G[j];
+      }
+    if (body.friction() == RigidBody::Friction::smooth)
+      return state;
+
+    // Coulomb's return map on the piece's mean slip relative to the rigid
+    // body, from the mean tangential traction of the last increment.
+    const Tensor<1, 2> rigid = body.displacement(to) - body.displacement(from);
+    double             slip = 0, previous = 0;
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Tensor<1, 2> &nq = surface[q].normal;
+        const Tensor<1, 2>  tq({-nq[1], nq[0]});
+        slip += piece.weights[q] * ((u[q] - rigid) * tq) / L;
+        previous += piece.weights[q] * (piece.previous[q] * tq) / L;
+      }
+    const double trial = previous - penalty * slip;
+    const double limit = body.friction() == RigidBody::Friction::rough ?
+                           std::numeric_limits<double>::infinity() :
+                           body.friction_coefficient() * state.pressure;
+    const double sign  = trial > 0 ? 1. : -1.;
+    state.sliding      = std::abs(trial) > limit;
+    state.tangential   = state.sliding ? sign * limit : trial;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        state.force[i] += state.tangential * T[i];
+        for (unsigned int j = 0; j < n; ++j)
+          state.stiffness(i, j) +=
+            state.sliding ?
+              // t_T = mu p sign: its derivative is p's.
+              sign * body.friction_coefficient() * penalty / L * T[i] * G[j] :
+              penalty / L * T[i] * T[j];
+      }
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Tensor<1, 2> &nq = surface[q].normal;
+        state.resultant +=
+          piece.weights[q] * state.tangential * Tensor<1, 2>({-nq[1], nq[0]});
+      }
+    return state;
+  }
+
+
+
+  bool
+  CurveContact::add_newton_terms(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   &tangent,
+    TrilinosWrappers::MPI::Vector                    &force)
+  {
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    bool symmetric = true;
+    for (const ContactPiece &piece : pieces)
+      {
+        const auto d =
+          MaterialPoints::cell_increment(grid.locally_owned_cell(piece.cell),
+                                         increment,
+                                         prescribed,
+                                         dof_indices);
+        const PieceState state = evaluate(piece, grid, kernel, d);
+        if (!state.active)
+          continue;
+        symmetric = symmetric && !state.sliding;
+        constraints.distribute_local_to_global(
+          state.stiffness, state.force, dof_indices, tangent, force);
+      }
+    return Utilities::MPI::min(symmetric ? 1 : 0, grid.mpi_communicator()) ==
+           1;
+  }
+
+
+
+  void
+  CurveContact::finish_increment(
+    const BoundaryCurves                             &curves,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    const MPI_Comm communicator = grid.mpi_communicator();
+    const auto    &all_curves   = curves.get_curves();
+    std::vector<double> sums(4 * bodies.size(), 0.);
+    std::vector<double> penetration(bodies.size(), 0.);
+    // The history of friction: the traction of a piece at the curve points
+    // whose knots lie in it (u_begin <= u_k < u_end, and u = 1 in the
+    // last), so that each point has one piece and one process.
+    std::vector<std::vector<double>> tractions(all_curves.size());
+    for (unsigned int c = 0; c < all_curves.size(); ++c)
+      tractions[c].assign(2 * all_curves[c].positions.size(), 0.);
+    last_tractions.clear();
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    for (const ContactPiece &piece : pieces)
+      {
+        const auto d =
+          MaterialPoints::cell_increment(grid.locally_owned_cell(piece.cell),
+                                         increment,
+                                         prescribed,
+                                         dof_indices);
+        const PieceState state = evaluate(piece, grid, kernel, d);
+        if (!state.active)
+          continue;
+        // The rigid body feels the opposite of what the curve feels.
+        sums[4 * piece.body + 0] -= state.resultant[0];
+        sums[4 * piece.body + 1] -= state.resultant[1];
+        sums[4 * piece.body + 2] += piece.length;
+        sums[4 * piece.body + 3] += state.sliding ? piece.length : 0.;
+        penetration[piece.body] =
+          std::max(penetration[piece.body], -state.gap);
+        last_tractions.insert(last_tractions.end(),
+                              {double(piece.body + 1),
+                               state.midpoint[0],
+                               state.midpoint[1],
+                               state.gap,
+                               state.pressure,
+                               state.tangential,
+                               piece.length,
+                               state.sliding ? 1. : 0.});
+
+        const BoundaryCurve &curve = all_curves[piece.curve];
+        const Tensor<1, 2>   n     = state.normal;
+        const Tensor<1, 2>   traction =
+          state.pressure * n + state.tangential * Tensor<1, 2>({-n[1], n[0]});
+        for (unsigned int k = 0; k < curve.positions.size(); ++k)
+          {
+            const double u_k =
+              k < curve.spline->n_segments() ?
+                curve.spline->segment_parameters(k)[0] :
+                1.;
+            if ((u_k >= piece.u_begin && u_k < piece.u_end) ||
+                (u_k == 1. && piece.u_end == 1.))
+              {
+                tractions[piece.curve][2 * k] += traction[0];
+                tractions[piece.curve][2 * k + 1] += traction[1];
+              }
+          }
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+    Utilities::MPI::max(penetration, communicator, penetration);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        resultants[b].force =
+          Tensor<1, 2>({sums[4 * b + 0], sums[4 * b + 1]});
+        resultants[b].contact_length = sums[4 * b + 2];
+        resultants[b].sliding_length = sums[4 * b + 3];
+        resultants[b].penetration    = penetration[b];
+      }
+    for (unsigned int c = 0; c < all_curves.size(); ++c)
+      {
+        Utilities::MPI::sum(tractions[c], communicator, tractions[c]);
+        for (unsigned int k = 0; k < all_curves[c].positions.size(); ++k)
+          point_tractions[c][k] =
+            Tensor<1, 2>({tractions[c][2 * k], tractions[c][2 * k + 1]});
+      }
+  }
+
+
+
+  void
+  CurveContact::record(std::map<std::string, double> &quantities) const
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const std::string &name = bodies[b].name();
+        const Tensor<1, 2> u    = bodies[b].displacement(to);
+        quantities[name + "_force_x"]        = resultants[b].force[0];
+        quantities[name + "_force_y"]        = resultants[b].force[1];
+        quantities[name + "_displacement_x"] = u[0];
+        quantities[name + "_displacement_y"] = u[1];
+        quantities[name + "_contact_length"] = resultants[b].contact_length;
+        quantities[name + "_sliding_length"] = resultants[b].sliding_length;
+        quantities[name + "_penetration"]    = resultants[b].penetration;
+      }
+  }
+
+
+
+  void
+  CurveContact::write_tractions(std::ostream  &out,
+                                const MPI_Comm communicator) const
+  {
+    const auto all = Utilities::MPI::gather(communicator, last_tractions, 0);
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    out << "body,x,y,gap,pressure,tangential_traction,length,sliding\n"
+        << std::setprecision(10);
+    for (const auto &part : all)
+      for (unsigned int i = 0; i + 8 <= part.size(); i += 8)
+        {
+          out << static_cast<unsigned int>(part[i]);
+          for (unsigned int j = 1; j < 8; ++j)
+            out << ',' << part[i + j];
+          out << '\n';
+        }
+  }
+} // namespace bsmpm

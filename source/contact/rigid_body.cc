@@ -1,0 +1,435 @@
+#include <deal.II/base/numbers.h>
+
+#include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/contact/rigid_body.h>
+
+#include <cmath>
+#include <limits>
+
+namespace bsmpm
+{
+  namespace
+  {
+    std::string
+    body_section(const unsigned int b)
+    {
+      return "Rigid body " + std::to_string(b + 1);
+    }
+
+
+
+    /**
+     * A polygon grown by a radius r >= 0 (the set of points within r of
+     * it): r = 0 is the polygon itself, r > 0 rounds its convex corners by
+     * arcs of radius r about them. The gap of x is its distance from the
+     * polygon less r, signed by the side.
+     */
+    class PolygonShape : public RigidShape
+    {
+    public:
+      PolygonShape(const std::vector<Point<2>> &vertices, const double radius)
+        : vertices(vertices)
+        , radius(radius)
+      {}
+
+      SurfacePoint
+      nearest(const Point<2> &x) const override
+      {
+        const unsigned int n         = vertices.size();
+        double             best      = std::numeric_limits<double>::max();
+        Point<2>           closest   = vertices[0];
+        bool               at_corner = false;
+        unsigned int       feature   = 0;
+        Tensor<1, 2>       edge_normal;
+        unsigned int       edge      = 0;
+        bool               inside = false;
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            const Point<2>    &a = vertices[k];
+            const Point<2>    &b = vertices[(k + 1) % n];
+            const Tensor<1, 2> e = b - a;
+            const double       f =
+              std::clamp(((x - a) * e) / e.norm_square(), 0., 1.);
+            const Point<2> q = a + f * e;
+            const double   d = (x - q).norm();
+            if (d < best)
+              {
+                best        = d;
+                closest     = q;
+                at_corner   = (f == 0. || f == 1.);
+                feature     = f == 0. ? 2 * k + 1 :
+                              f == 1. ? 2 * ((k + 1) % n) + 1 :
+                                        2 * k;
+                edge        = k;
+                edge_normal = Tensor<1, 2>({e[1], -e[0]}) / e.norm();
+              }
+            // Crossing number: the edges that a ray from x in +x crosses.
+            if ((a[1] > x[1]) != (b[1] > x[1]) &&
+                x[0] < a[0] + (x[1] - a[1]) / (b[1] - a[1]) * e[0])
+              inside = !inside;
+          }
+        SurfacePoint s;
+        if (inside || best == 0.)
+          {
+            s.gap     = -best - radius;
+            s.normal  = edge_normal;
+            s.feature = 2 * edge;
+            return s;
+          }
+        s.gap     = best - radius;
+        s.normal  = (x - closest) / best;
+        s.feature = feature;
+        // Round a corner, or the polygon grown by r anywhere: n turns about
+        // the nearest point of the polygon.
+        if (at_corner)
+          s.turning_radius = best;
+        return s;
+      }
+
+      SurfacePoint
+      to_feature(const Point<2> &x, const unsigned int feature) const override
+      {
+        const unsigned int k = feature / 2;
+        SurfacePoint       s;
+        s.feature = feature;
+        if (feature % 2 == 0)
+          {
+            // The line of edge k, its outward normal n: gap (x - a) . n - r.
+            const Point<2>    &a = vertices[k];
+            const Tensor<1, 2> e = vertices[(k + 1) % vertices.size()] - a;
+            s.normal             = Tensor<1, 2>({e[1], -e[0]}) / e.norm();
+            s.gap                = (x - a) * s.normal - radius;
+            return s;
+          }
+        // The circle of radius r round vertex k.
+        const double d   = (x - vertices[k]).norm();
+        s.gap            = d - radius;
+        s.normal         = d > 0 ? Tensor<1, 2>((x - vertices[k]) / d) :
+                                   Tensor<1, 2>({0., 1.});
+        s.turning_radius = d;
+        return s;
+      }
+
+      std::vector<Point<2>>
+      outline() const override
+      {
+        if (radius == 0.)
+          {
+            std::vector<Point<2>> line = vertices;
+            line.push_back(vertices[0]);
+            return line;
+          }
+        // Each edge shifted out by r, joined by arcs about the corners.
+        std::vector<Point<2>> line;
+        const unsigned int    n = vertices.size();
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            const Point<2> &a  = vertices[(k + n - 1) % n];
+            const Point<2> &b  = vertices[k];
+            const Point<2> &c  = vertices[(k + 1) % n];
+            const double    a0 = std::atan2(a[0] - b[0], b[1] - a[1]);
+            double          a1 = std::atan2(b[0] - c[0], c[1] - b[1]);
+            if (a1 - a0 > numbers::PI)
+              a1 -= 2 * numbers::PI;
+            if (a1 - a0 <= -numbers::PI)
+              a1 += 2 * numbers::PI;
+            // A concave corner (a1 < a0) has no arc: the two shifted edges
+            // cross; its two ends suffice for a picture.
+            const unsigned int samples = a1 > a0 ? 8 : 1;
+            for (unsigned int i = 0; i <= samples; ++i)
+              {
+                const double phi = a0 + (a1 - a0) * i / samples;
+                line.push_back(
+                  b + radius * Tensor<1, 2>({std::cos(phi), std::sin(phi)}));
+              }
+          }
+        line.push_back(line.front());
+        return line;
+      }
+
+      double
+      size() const override
+      {
+        double largest = 0;
+        for (const auto &v : vertices)
+          largest = std::max(largest, (v - vertices[0]).norm());
+        return largest + radius;
+      }
+
+      Point<2>
+      reference_point() const override
+      {
+        return vertices[0];
+      }
+
+    private:
+      std::vector<Point<2>> vertices;
+      double                radius;
+    };
+
+
+
+    class CircleShape : public RigidShape
+    {
+    public:
+      CircleShape(const Point<2> &center, const double radius)
+        : center(center)
+        , radius(radius)
+      {}
+
+      SurfacePoint
+      nearest(const Point<2> &x) const override
+      {
+        const double d = (x - center).norm();
+        SurfacePoint s;
+        s.gap            = d - radius;
+        s.normal         = d > 0 ? Tensor<1, 2>((x - center) / d) :
+                                   Tensor<1, 2>({0., 1.});
+        s.turning_radius = d;
+        return s;
+      }
+
+      SurfacePoint
+      to_feature(const Point<2> &x, const unsigned int) const override
+      {
+        return nearest(x);
+      }
+
+      std::vector<Point<2>>
+      outline() const override
+      {
+        std::vector<Point<2>>  line;
+        constexpr unsigned int samples = 128;
+        for (unsigned int i = 0; i <= samples; ++i)
+          {
+            const double phi = 2 * numbers::PI * i / samples;
+            line.push_back(center + radius * Tensor<1, 2>({std::cos(phi),
+                                                           std::sin(phi)}));
+          }
+        return line;
+      }
+
+      double
+      size() const override
+      {
+        return radius;
+      }
+
+      Point<2>
+      reference_point() const override
+      {
+        return center;
+      }
+
+    private:
+      Point<2> center;
+      double   radius;
+    };
+
+
+
+    /** Twice the signed area of a polygon (> 0 counter-clockwise). */
+    double
+    twice_signed_area(const std::vector<Point<2>> &v)
+    {
+      double a = 0;
+      for (unsigned int k = 0; k < v.size(); ++k)
+        {
+          const Point<2> &p = v[k];
+          const Point<2> &q = v[(k + 1) % v.size()];
+          a += p[0] * q[1] - q[0] * p[1];
+        }
+      return a;
+    }
+  } // namespace
+
+
+
+  void
+  RigidBody::declare_parameters(ParameterHandler &prm)
+  {
+    for (unsigned int b = 0; b < max_bodies; ++b)
+      {
+        prm.enter_subsection(body_section(b));
+        prm.declare_entry(
+          "Shape",
+          "none",
+          Patterns::Selection("none|polygon|circle"),
+          "A rigid body that the boundary curves of the body come into "
+          "contact with (doc/contact.md): none, a polygon (Vertices, "
+          "Corner radius) or a circle (Center, Radius). Every free stretch "
+          "of every boundary curve takes contact with it where it touches; "
+          "curve stretches with a load or support do not.");
+        prm.declare_entry("Vertices",
+                          "0, 0; 1, 0; 1, 1; 0, 1",
+                          Patterns::Anything(),
+                          "polygon: its vertices 'x0, y0; x1, y1; ...' in m "
+                          "(at least 3, counter-clockwise, the last joins "
+                          "the first), in the body's place at load factor 0.");
+        prm.declare_entry("Corner radius",
+                          "0",
+                          Patterns::Double(0.),
+                          "polygon: the body is the polygon grown by this "
+                          "radius in m (its corners rounded, its edges moved "
+                          "out by it); 0 keeps sharp corners.");
+        prm.declare_entry("Center",
+                          "0, 0",
+                          ParameterTools::point_pattern(),
+                          "circle: its centre in m at load factor 0.");
+        prm.declare_entry("Radius",
+                          "1",
+                          Patterns::Double(0.),
+                          "circle: its radius in m.");
+        prm.declare_entry(
+          "Displacement",
+          "0; 0",
+          Patterns::Anything(),
+          "The body's translation 'ux; uy' in m as expressions of the load "
+          "factor t (0 at the start, 1 at the end of the load steps), for "
+          "example '0; -0.1*t', or a load, unload and lift: "
+          "'0; if(t < 0.5, -0.2*t, -0.2 + 0.3*t)'.");
+        prm.declare_entry("Friction",
+                          "smooth",
+                          Patterns::Selection("smooth|frictional|rough"),
+                          "smooth: no tangential traction; frictional: "
+                          "Coulomb friction with the Friction coefficient "
+                          "(sticking while |t_T| <= mu p_N, sliding "
+                          "beyond); rough: no sliding while in contact.");
+        prm.declare_entry("Friction coefficient",
+                          "0.3",
+                          Patterns::Double(0.),
+                          "Coulomb's coefficient mu of a frictional surface.");
+        prm.leave_subsection();
+      }
+  }
+
+
+
+  std::vector<RigidBody>
+  RigidBody::create_all(ParameterHandler &prm)
+  {
+    std::vector<RigidBody> bodies;
+    for (unsigned int b = 0; b < max_bodies; ++b)
+      {
+        prm.enter_subsection(body_section(b));
+        const std::string where = body_section(b);
+        const std::string kind  = prm.get("Shape");
+        if (kind == "none")
+          {
+            prm.leave_subsection();
+            continue;
+          }
+        RigidBody body;
+        body.body_name = "rigid_body_" + std::to_string(b + 1);
+        if (kind == "circle")
+          {
+            const double radius = prm.get_double("Radius");
+            AssertThrow(radius > 0,
+                        ExcMessage(where + "/Radius must be positive."));
+            body.shape = std::make_shared<CircleShape>(
+              ParameterTools::get_point(prm, "Center"), radius);
+          }
+        else
+          {
+            const std::string     text = prm.get("Vertices");
+            const std::string     form = where +
+                                     "/Vertices: give at least 3 vertices as "
+                                     "'x0, y0; x1, y1; x2, y2', not '" +
+                                     text + "'.";
+            std::vector<Point<2>> vertices;
+            for (const auto &vertex : Utilities::split_string_list(text, ';'))
+              {
+                const auto xy = Utilities::split_string_list(vertex, ',');
+                AssertThrow(xy.size() == 2, ExcMessage(form));
+                Point<2> p;
+                for (unsigned int d = 0; d < 2; ++d)
+                  {
+                    try
+                      {
+                        p[d] = Utilities::string_to_double(xy[d]);
+                      }
+                    catch (...)
+                      {
+                        AssertThrow(false, ExcMessage(form));
+                      }
+                    ParameterTools::require_finite(p[d], where + "/Vertices");
+                  }
+                vertices.push_back(p);
+              }
+            AssertThrow(vertices.size() >= 3, ExcMessage(form));
+            AssertThrow(twice_signed_area(vertices) > 0,
+                        ExcMessage(where +
+                                   "/Vertices must run counter-clockwise "
+                                   "round a polygon of positive area."));
+            body.shape = std::make_shared<PolygonShape>(
+              vertices, prm.get_double("Corner radius"));
+          }
+
+        body.motion = std::make_shared<FunctionParser<1>>(2);
+        try
+          {
+            body.motion->initialize("t",
+                                    prm.get("Displacement"),
+                                    std::map<std::string, double>());
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage(where + "/Displacement = '" +
+                                   prm.get("Displacement") +
+                                   "' is not two expressions 'ux; uy' of "
+                                   "the load factor t."));
+          }
+        for (const double t : {0., 0.5, 1.})
+          {
+            const Tensor<1, 2> u = body.displacement(t);
+            AssertThrow(std::isfinite(u[0]) && std::isfinite(u[1]),
+                        ExcMessage(where + "/Displacement is not finite at "
+                                           "t = " +
+                                   std::to_string(t) + "."));
+          }
+
+        const std::string friction = prm.get("Friction");
+        body.surface_friction =
+          friction == "smooth"     ? Friction::smooth :
+          friction == "frictional" ? Friction::frictional :
+                                     Friction::rough;
+        body.mu = prm.get_double("Friction coefficient");
+        prm.leave_subsection();
+        bodies.push_back(std::move(body));
+      }
+    return bodies;
+  }
+
+
+
+  Tensor<1, 2>
+  RigidBody::displacement(const double t) const
+  {
+    const Point<1> p(t);
+    return Tensor<1, 2>({motion->value(p, 0), motion->value(p, 1)});
+  }
+
+
+
+  bool
+  RigidBody::surely_further_than(const Point<2> &x,
+                                 const double    t,
+                                 const double    distance) const
+  {
+    const Point<2> c = shape->reference_point() + displacement(t);
+    return (x - c).norm() > shape->size() + distance;
+  }
+
+
+
+  std::vector<Point<2>>
+  RigidBody::outline(const double t) const
+  {
+    std::vector<Point<2>> line = shape->outline();
+    const Tensor<1, 2>    u    = displacement(t);
+    for (auto &p : line)
+      p += u;
+    return line;
+  }
+} // namespace bsmpm
