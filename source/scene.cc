@@ -214,7 +214,8 @@ namespace bsmpm
                                newton,
                                points,
                                boundary_curves,
-                               constitutive_update.get()},
+                               constitutive_update.get(),
+                               contact.enabled() ? &contact : nullptr},
         timer);
       increment.reinit(grid.locally_owned_dofs(),
                        grid.locally_relevant_dofs(),

@@ -117,6 +117,7 @@ namespace bsmpm
                                                 {},
                                                 {},
                                                 {},
+                                                {},
                                                 0});
                 ContactPiece &contact_piece = pieces.back();
                 contact_piece.u_end         = piece.u_end;
@@ -132,6 +133,15 @@ namespace bsmpm
                     contact_piece.features.push_back(
                       bodies[b].nearest(contact_piece.positions.back(), from)
                         .feature);
+                    // The first guess of the part that touches: where the
+                    // rigid body, moved to the increment's end, overlaps
+                    // the curve that has not moved yet.
+                    contact_piece.touching.push_back(
+                      bodies[b]
+                        .to_feature(contact_piece.positions.back(),
+                                    to,
+                                    contact_piece.features.back())
+                        .gap <= 1e-12 * h);
                     contact_piece.weights.push_back(
                       spline.derivative(u).norm() * du * gauss.weight(q));
                     contact_piece.previous.push_back(
@@ -155,17 +165,17 @@ namespace bsmpm
     constexpr unsigned int n    = Q1CellKernel::dofs_per_cell;
     const RigidBody       &body = bodies[piece.body];
     const unsigned int     n_q  = piece.positions.size();
-    const double           L    = piece.length;
-
-    // Where the Gauss points are after the increment, and the rigid
-    // surface nearest to them.
+    // Where the Gauss points are after the increment, and their gaps to
+    // the part of the outline each faces.
     std::vector<std::array<Tensor<1, 2>, n>> N(n_q);
     std::vector<Tensor<1, 2>>                u(n_q);
     std::vector<SurfacePoint>                surface(n_q);
     PieceState                               state;
+    double                                   length = 0;
     for (unsigned int q = 0; q < n_q; ++q)
       {
-        const Point<2> st = grid.local_coordinates(piece.positions[q], piece.cell);
+        const Point<2> st =
+          grid.local_coordinates(piece.positions[q], piece.cell);
         for (unsigned int i = 0; i < n; ++i)
           {
             N[q][i] = kernel.shape_value(i, st);
@@ -173,29 +183,42 @@ namespace bsmpm
           }
         surface[q] =
           body.to_feature(piece.positions[q] + u[q], to, piece.features[q]);
-        state.gap += piece.weights[q] * surface[q].gap / L;
+        if (!piece.touching[q])
+          continue;
+        state.gap += piece.weights[q] * surface[q].gap;
+        length += piece.weights[q];
         state.normal += piece.weights[q] * surface[q].normal;
-        state.midpoint += piece.weights[q] / L * (piece.positions[q] + u[q]);
+        state.midpoint += piece.weights[q] * (piece.positions[q] + u[q]);
       }
-    state.normal /= state.normal.norm();
     state.force.reinit(n);
     state.stiffness.reinit(n, n);
-    // The piece's mean gap decides: a pressure per piece, constant along
-    // it, does not over-constrain the bilinear displacement as a pressure
-    // per Gauss point would (which made the pressure oscillate between
-    // zero and twice Hertz's).
+    if (length == 0)
+      return state;
+    state.gap /= length;
     // Touching within round-off counts, with zero pressure: a body that
     // rests on a rigid one (and on nothing else) is held from the first
     // iteration on, which starts from the touching place.
     if (!(state.gap <= 1e-12 * grid.min_cell_size()))
       return state;
-    state.active   = true;
-    state.pressure = std::max(-penalty * state.gap, 0.);
+    state.active         = true;
+    state.normal        /= state.normal.norm();
+    state.midpoint      /= length;
+    state.contact_length = length;
+    const double L       = length;
 
-    // G_i = int n . N_i ds: the derivative of L times the mean gap.
+    // The potential eps L g^2 / 2 of the mean gap g over the part of the
+    // piece that touches: one pressure p = -eps g for the part. One
+    // pressure per cell does not over-constrain the bilinear displacement,
+    // as one per Gauss point did (its pressure alternated between zero and
+    // twice Hertz's); which Gauss points touch is fixed within the Newton
+    // iterations (update_touching_parts()), so that the force stays a
+    // smooth function of the increment. G_i = -d(L g)/du_i = int n . N_i.
+    state.pressure = std::max(-penalty * state.gap, 0.);
     Vector<double> G(n), T(n);
     for (unsigned int q = 0; q < n_q; ++q)
       {
+        if (!piece.touching[q])
+          continue;
         const Tensor<1, 2> &nq = surface[q].normal;
         const Tensor<1, 2>  tq({-nq[1], nq[0]});
         for (unsigned int i = 0; i < n; ++i)
@@ -222,17 +245,19 @@ namespace bsmpm
     if (body.friction() == RigidBody::Friction::smooth)
       return state;
 
-    // Coulomb's return map on the piece's mean slip relative to the rigid
-    // body, from the mean tangential traction of the last increment.
+    // Coulomb's return map on the mean slip, relative to the rigid body,
+    // of the part that touches, from the mean tangential traction of the
+    // last increment there.
     const Tensor<1, 2> rigid = body.displacement(to) - body.displacement(from);
     double             slip = 0, previous = 0;
     for (unsigned int q = 0; q < n_q; ++q)
-      {
-        const Tensor<1, 2> &nq = surface[q].normal;
-        const Tensor<1, 2>  tq({-nq[1], nq[0]});
-        slip += piece.weights[q] * ((u[q] - rigid) * tq) / L;
-        previous += piece.weights[q] * (piece.previous[q] * tq) / L;
-      }
+      if (piece.touching[q])
+        {
+          const Tensor<1, 2> &nq = surface[q].normal;
+          const Tensor<1, 2>  tq({-nq[1], nq[0]});
+          slip += piece.weights[q] * ((u[q] - rigid) * tq) / length;
+          previous += piece.weights[q] * (piece.previous[q] * tq) / length;
+        }
     const double trial = previous - penalty * slip;
     const double limit = body.friction() == RigidBody::Friction::rough ?
                            std::numeric_limits<double>::infinity() :
@@ -251,11 +276,12 @@ namespace bsmpm
               penalty / L * T[i] * T[j];
       }
     for (unsigned int q = 0; q < n_q; ++q)
-      {
-        const Tensor<1, 2> &nq = surface[q].normal;
-        state.resultant +=
-          piece.weights[q] * state.tangential * Tensor<1, 2>({-nq[1], nq[0]});
-      }
+      if (piece.touching[q])
+        {
+          const Tensor<1, 2> &nq = surface[q].normal;
+          state.resultant += piece.weights[q] * state.tangential *
+                             Tensor<1, 2>({-nq[1], nq[0]});
+        }
     return state;
   }
 
@@ -294,6 +320,47 @@ namespace bsmpm
 
 
 
+  bool
+  CurveContact::update_touching_parts(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    const double                         touching = 1e-12 * grid.min_cell_size();
+    bool                                 changed  = false;
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    for (ContactPiece &piece : pieces)
+      {
+        const auto d =
+          MaterialPoints::cell_increment(grid.locally_owned_cell(piece.cell),
+                                         increment,
+                                         prescribed,
+                                         dof_indices);
+        for (unsigned int q = 0; q < piece.positions.size(); ++q)
+          {
+            const Point<2> st =
+              grid.local_coordinates(piece.positions[q], piece.cell);
+            Tensor<1, 2> u;
+            for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+              u += d[i] * kernel.shape_value(i, st);
+            const bool touches =
+              bodies[piece.body]
+                .to_feature(piece.positions[q] + u, to, piece.features[q])
+                .gap <= touching;
+            if (touches != piece.touching[q])
+              {
+                piece.touching[q] = touches;
+                changed           = true;
+              }
+          }
+      }
+    return Utilities::MPI::logical_or(changed, grid.mpi_communicator());
+  }
+
+
+
   void
   CurveContact::finish_increment(
     const BoundaryCurves                             &curves,
@@ -328,8 +395,8 @@ namespace bsmpm
         // The rigid body feels the opposite of what the curve feels.
         sums[4 * piece.body + 0] -= state.resultant[0];
         sums[4 * piece.body + 1] -= state.resultant[1];
-        sums[4 * piece.body + 2] += piece.length;
-        sums[4 * piece.body + 3] += state.sliding ? piece.length : 0.;
+        sums[4 * piece.body + 2] += state.contact_length;
+        sums[4 * piece.body + 3] += state.sliding ? state.contact_length : 0.;
         penetration[piece.body] =
           std::max(penetration[piece.body], -state.gap);
         last_tractions.insert(last_tractions.end(),
@@ -339,7 +406,7 @@ namespace bsmpm
                                state.gap,
                                state.pressure,
                                state.tangential,
-                               piece.length,
+                               state.contact_length,
                                state.sliding ? 1. : 0.});
 
         const BoundaryCurve &curve = all_curves[piece.curve];

@@ -91,12 +91,10 @@ namespace bsmpm
             start_norm = -1; // the held system is not that of zero
           }
       }
-    return parts.newton.solve(
-      reference,
-      [&]() {
-        return assembly.newton_system(update, points, increment, prescribed);
-      },
-      [&]() {
+    const auto residual = [&]() {
+      return assembly.newton_system(update, points, increment, prescribed);
+    };
+    const auto correct = [&]() {
         TimerOutput::Scope            t(timer, "solve");
         TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
                                                  grid.mpi_communicator());
@@ -125,16 +123,37 @@ namespace bsmpm
         last_correction          = correction;
         return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
                               report.iterations);
-      },
-      [&](const double alpha) {
-        // From x + a dx to x + (a - alpha) dx.
-        for (const auto i : grid.locally_owned_dofs())
-          increment(i) -= alpha * last_correction(i);
-        increment.update_ghost_values();
-      },
-      // dx . R(x): the slope of the potential along dx, for the line search.
-      [&]() { return last_correction * assembly.residual(); },
-      start_norm);
+    };
+    const auto step_back = [&](const double alpha) {
+      // From x + a dx to x + (a - alpha) dx.
+      for (const auto i : grid.locally_owned_dofs())
+        increment(i) -= alpha * last_correction(i);
+      increment.update_ghost_values();
+    };
+    // dx . R(x): the slope of the potential along dx, for the line search.
+    const auto slope = [&]() { return last_correction * assembly.residual(); };
+
+    NewtonSolver::Result result = parts.newton.solve(
+      reference, residual, correct, step_back, slope, start_norm);
+    // Which Gauss points of the curves touch a rigid body is fixed within
+    // the iterations (CurveContact): where the converged increment changes
+    // it, iterate on from there.
+    for (unsigned int round = 0;
+         parts.contact != nullptr && result.converged &&
+         round < max_contact_rounds &&
+         parts.contact->update_touching_parts(
+           grid, assembly.kernel(), increment, prescribed);
+         ++round)
+      {
+        NewtonSolver::Result more = parts.newton.solve(
+          reference, residual, correct, step_back, slope, residual());
+        result.iterations.insert(result.iterations.end(),
+                                 more.iterations.begin(),
+                                 more.iterations.end());
+        result.converged = more.converged;
+        result.failure   = more.failure;
+      }
+    return result;
   }
 
 

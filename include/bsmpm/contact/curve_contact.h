@@ -104,6 +104,19 @@ namespace bsmpm
       TrilinosWrappers::MPI::Vector                    &force);
 
     /**
+     * After Newton iterations converged at @p increment: marks the Gauss
+     * points that touch their rigid body there as the pieces' touching
+     * parts. Returns whether any changed (on any process): then the
+     * iterations must go on with the new parts. Collective.
+     */
+    bool
+    update_touching_parts(
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /**
      * After the increment converged at @p increment: the force on each
      * rigid body and the length in contact, and the tangential tractions
      * at the curves' points for the next increment. Call before the
@@ -147,6 +160,10 @@ namespace bsmpm
       /** The part of the outline each Gauss point measures its gap to:
        * the nearest at the increment's start. */
       std::vector<unsigned int> features;
+      /** Which Gauss points make up the part that touches: fixed within
+       * Newton iterations, updated between them
+       * (update_touching_parts()). */
+      std::vector<bool> touching;
       /** The traction of the last increment, interpolated from the
        * curve's points. */
       std::vector<Tensor<1, 2>> previous;
@@ -158,7 +175,9 @@ namespace bsmpm
     {
       bool         active     = false;
       bool         sliding    = false;
-      double       gap        = 0; ///< mean over the piece
+      /** Minus the mean penetration where the piece touches. */
+      double       gap            = 0;
+      double       contact_length = 0; ///< of the part that touches
       double       pressure   = 0;
       double       tangential = 0;
       Tensor<1, 2> normal; ///< mean normal of the rigid surface

@@ -40,6 +40,8 @@ namespace bsmpm
       const BoundaryCurves &boundary_curves;
       /** Null for linear elasticity in small strain. */
       const ConstitutiveUpdate *constitutive_update;
+      /** Contact with rigid bodies, or null. */
+      CurveContact *contact = nullptr;
     };
 
     /** What the linear solves of Newton iterations did: the method and
@@ -67,7 +69,9 @@ namespace bsmpm
      * Newton iterations of the nonlinear material for the assembled load
      * increment @p delta into @p increment; @p prescribed: the nodal
      * values of a prescribed displacement increment, or null. Adds the
-     * figures of the linear solves to @p solves.
+     * figures of the linear solves to @p solves. With contact, the
+     * iterations go on after convergence while the parts of the curves
+     * that touch a rigid body change (at most max_contact_rounds times).
      */
     NewtonSolver::Result
     solve_newton(const double                                      delta,
@@ -97,6 +101,10 @@ namespace bsmpm
            const double                                      delta);
 
   private:
+    /** Newton solves after the first that a change of the touching parts
+     * can ask for; then the last parts stand. */
+    static constexpr unsigned int max_contact_rounds = 8;
+
     Parts        parts;
     TimerOutput &timer;
 
