@@ -523,6 +523,39 @@ namespace bsmpm
 
 
 
+  std::vector<double>
+  MaterialPoints::neighbourhood_mean_properties(
+    const DoFHandler<2>::active_cell_iterator &cell) const
+  {
+    std::vector<double> mean;
+    double              volume = 0;
+    for (const unsigned int f : cell->face_indices())
+      {
+        if (cell->at_boundary(f))
+          continue;
+        const auto neighbour = cell->neighbor(f);
+        if (!neighbour->is_active() || !neighbour->is_locally_owned())
+          continue;
+        for (const auto &particle : particles.particles_in_cell(neighbour))
+          {
+            const auto   props = particle.get_properties();
+            const double V     = props[Property::volume];
+            if (!(V > 0))
+              continue;
+            if (mean.empty())
+              mean.assign(props.size(), 0.);
+            for (unsigned int k = 0; k < props.size(); ++k)
+              mean[k] += V * props[k];
+            volume += V;
+          }
+      }
+    for (double &value : mean)
+      value /= volume;
+    return mean;
+  }
+
+
+
   void
   MaterialPoints::find_material_cells()
   {
