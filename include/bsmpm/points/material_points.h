@@ -247,8 +247,9 @@ namespace bsmpm
 
     /**
      * The mean properties of the points with volume in the locally owned
-     * face neighbours of @p cell, weighted by their volumes; empty if none
-     * of them holds material. The state of the neighbourhood for a cell of
+     * face neighbours of @p cell (if none holds material, the diagonal
+     * neighbours), weighted by their volumes; empty if none of them holds
+     * material. The state of the neighbourhood for a cell of
      * the body that holds no point (ConstitutiveUpdate): exact wherever
      * the state is uniform.
      */
