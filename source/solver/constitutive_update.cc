@@ -263,7 +263,7 @@ namespace bsmpm
     // cell_system()): the mean is that of the exact centroid, so that the
     // B-bar shift integrates to zero over the cell and a homogeneous
     // state stays exact.
-    if (exact_moments != nullptr && quadrature_weights && exact_moments->v > 0)
+    if (completes_moments() && exact_moments != nullptr && exact_moments->v > 0)
       strain.centroid = Point<2>(exact_moments->vs / exact_moments->v,
                                  exact_moments->vt / exact_moments->v);
     for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
@@ -531,7 +531,7 @@ namespace bsmpm
     // deformation gives every point the same stress and the cell's force
     // is that of the exact geometry, while the tangent stays the
     // derivative of the force (and symmetric where the model's is).
-    if (exact_moments != nullptr && quadrature_weights && W > 0)
+    if (completes_moments() && exact_moments != nullptr && W > 0)
       {
         const CellMoments &m         = *exact_moments;
         const double       tolerance = 1e-10 * std::max(m.v, W);
@@ -610,8 +610,9 @@ namespace bsmpm
             // do), and a homogeneous state stays exact (SystemAssembly
             // leaves such cells to us).
             const CellMoments *m =
-              exact_moments ? &(*exact_moments)[cell->active_cell_index()] :
-                              nullptr;
+              completes_moments() ?
+                &(*exact_moments)[cell->active_cell_index()] :
+                nullptr;
             if (m == nullptr || !(m->v > 0))
               continue;
             borrowed = points.neighbourhood_mean_properties(cell);
