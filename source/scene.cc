@@ -200,12 +200,13 @@ namespace bsmpm
         }
       if (constitutive_update)
         {
-          assembly->leave_material_to_points(&points);
+          constitutive_update->use_cut_cell_quadrature(
+            cut_cell_quadrature.active() ? &cell_moments : nullptr);
+          assembly->leave_material_to_points(
+            &points, constitutive_update->completes_moments());
           assembly->use_finite_strain(
             constitutive_update->kinematics() ==
             ConstitutiveUpdate::Kinematics::finite_strain);
-          constitutive_update->use_quadrature_weights(
-            cut_cell_quadrature.active());
         }
       increment_solver = std::make_unique<IncrementSolver>(
         IncrementSolver::Parts{grid,

@@ -523,6 +523,46 @@ namespace bsmpm
 
 
 
+  std::vector<double>
+  MaterialPoints::neighbourhood_mean_properties(
+    const DoFHandler<2>::active_cell_iterator &cell) const
+  {
+    std::vector<double> mean;
+    double              volume     = 0;
+    const auto          add_points = [&](const auto &neighbour) {
+      if (!neighbour->is_active() || !neighbour->is_locally_owned())
+        return;
+      for (const auto &particle : particles.particles_in_cell(neighbour))
+        {
+          const auto   props = particle.get_properties();
+          const double V     = props[Property::volume];
+          if (!(V > 0))
+            continue;
+          if (mean.empty())
+            mean.assign(props.size(), 0.);
+          for (unsigned int k = 0; k < props.size(); ++k)
+            mean[k] += V * props[k];
+          volume += V;
+        }
+    };
+    // The face neighbours; where none holds material (a corner cell whose
+    // face neighbours are slivers without points), the diagonal ones.
+    for (const unsigned int f : cell->face_indices())
+      if (!cell->at_boundary(f))
+        add_points(cell->neighbor(f));
+    if (mean.empty())
+      for (const unsigned int f : {0u, 1u})
+        if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
+          for (const unsigned int g : {2u, 3u})
+            if (!cell->neighbor(f)->at_boundary(g))
+              add_points(cell->neighbor(f)->neighbor(g));
+    for (double &value : mean)
+      value /= volume;
+    return mean;
+  }
+
+
+
   void
   MaterialPoints::find_material_cells()
   {

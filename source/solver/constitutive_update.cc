@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 #include <limits>
 #include <memory>
 
@@ -235,7 +237,8 @@ namespace bsmpm
   ConstitutiveUpdate::CellStrain
   ConstitutiveUpdate::cell_strain(const Q1CellKernel              &kernel,
                                   const std::vector<PointView>    &cell_points,
-                                  const Q1CellKernel::LocalVector &d) const
+                                  const Q1CellKernel::LocalVector &d,
+                                  const CellMoments *exact_moments) const
   {
     CellStrain strain;
     strain.coefficients = kernel.strain_coefficients(d);
@@ -256,6 +259,14 @@ namespace bsmpm
       return strain;
     strain.use_b_bar = true;
     strain.centroid  = Point<2>(vs / v, vt / v);
+    // With the cut-cell quadrature the cell is integrated over its exact
+    // part in the body (the points' fitted weights, completed by
+    // cell_system()): the mean is that of the exact centroid, so that the
+    // B-bar shift integrates to zero over the cell and a homogeneous
+    // state stays exact.
+    if (completes_moments() && exact_moments != nullptr && exact_moments->v > 0)
+      strain.centroid = Point<2>(exact_moments->vs / exact_moments->v,
+                                 exact_moments->vt / exact_moments->v);
     for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
       {
         const Voigt mean = kernel.strain_column(i, strain.centroid);
@@ -388,10 +399,12 @@ namespace bsmpm
                                   const std::vector<PointView>    &cell_points,
                                   const Q1CellKernel::LocalVector &d,
                                   FullMatrix<double>              &K,
-                                  Vector<double>                  &f) const
+                                  Vector<double>                  &f,
+                                  const CellMoments *exact_moments) const
   {
-    constexpr unsigned int      n      = Q1CellKernel::dofs_per_cell;
-    const CellStrain            strain = cell_strain(kernel, cell_points, d);
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    const CellStrain       strain =
+      cell_strain(kernel, cell_points, d, exact_moments);
     std::array<Voigt, n>        B;
     std::array<Tensor<1, 4>, n> B_bar, DB_bar;
     std::array<Tensor<1, 2>, n> tau_g;
@@ -401,6 +414,101 @@ namespace bsmpm
       point_kinematics == Kinematics::small_strain && model.symmetric_tangent();
     K = 0;
     f = 0;
+    // Adds the point at @p st with properties @p props and weight @p w;
+    // false if it is inverted (f is then NaN).
+    const auto add_point = [&](const Point<2>                &st,
+                               const ArrayView<const double> &props,
+                               const double                   w,
+                               const bool                     count) {
+      if (point_kinematics == Kinematics::small_strain)
+        {
+          const Tensor<1, 4> de =
+            strain_increment(kernel, strain, st, d, B, B_bar);
+          const auto response = respond(props, de, state);
+          n_yielded += count && response.yielded;
+          const Tensor<1, 4> sigma({response.stress[0][0],
+                                    response.stress[1][1],
+                                    response.stress[2][2],
+                                    response.stress[0][1]});
+          const Tensor<2, 4> D = voigt_tangent(response.tangent);
+          for (unsigned int i = 0; i < n; ++i)
+            DB_bar[i] = w * (D * B_bar[i]);
+          // A symmetric tangent gives a symmetric cell matrix: its upper
+          // triangle here, the lower one mirrored after the points.
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              f[i] += w * (B_bar[i] * sigma);
+              for (unsigned int j = symmetric ? i : 0; j < n; ++j)
+                K(i, j) += B_bar[i] * DB_bar[j];
+            }
+          return true;
+        }
+
+      // Finite strain (doc/finite-strain.md).
+      const FiniteStrainPoint kin =
+        finite_strain_trial(kernel, strain, st, props, d, nullptr, state);
+      if (!(kin.det_f > 0))
+        {
+          // An inverted point: no finite residual, so Newton cuts the step.
+          f = std::numeric_limits<double>::quiet_NaN();
+          return false;
+        }
+      const auto response = model.update(state);
+      n_yielded += count && response.yielded;
+      const SymmetricTensor<2, 3> &tau = response.stress;
+      const double                 c   = w / props[Property::det_F];
+      // d tau / d eps^tr on in-plane strains (rows and columns xx, yy,
+      // xy, the xy column counted twice) and D : 1.
+      static constexpr unsigned int index[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+      Tensor<2, 3>                  D;
+      Tensor<1, 3>                  D1;
+      for (unsigned int r = 0; r < 3; ++r)
+        {
+          const unsigned int i = index[r][0], j = index[r][1];
+          for (unsigned int c = 0; c < 3; ++c)
+            D[r][c] = response.tangent[i][j][index[c][0]][index[c][1]] *
+                      (c == 2 ? 2. : 1.);
+          D1[r] = response.tangent[i][j][0][0] + response.tangent[i][j][1][1] +
+                  response.tangent[i][j][2][2];
+        }
+      const Tensor<2, 3> DL = D * kin.log_derivative;
+      const auto         N  = Q1CellKernel::vertex_shape_values(st);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int r = 0; r < 2; ++r)
+          tau_g[i][r] =
+            tau[r][0] * kin.gradients[i][0] + tau[r][1] * kin.gradients[i][1];
+      for (unsigned int a = 0; a < n; ++a)
+        f[a] += c * (tau_g[a][kernel.component(a)] -
+                     body_force[kernel.component(a)] * N[kernel.vertex(a)]);
+      for (unsigned int b = 0; b < n; ++b)
+        {
+          // The unit increment of DoF b (component k) gives
+          // delta b^tr = 2 sym(e_k (x) h), h = b^tr g_b, and
+          // delta eps^tr = L : sym(e_k (x) h) (+ F-bar's volumetric part).
+          const unsigned int k = kernel.component(b);
+          const Tensor<1, 2> h = kin.trial_b * kin.gradients[b];
+          // sym(e_k (x) h) as (xx, yy, xy).
+          const Tensor<1, 3> S = k == 0 ? Tensor<1, 3>({h[0], 0., h[1] / 2}) :
+                                          Tensor<1, 3>({0., h[1], h[0] / 2});
+          Tensor<1, 3>       dtau = DL * S;
+          if (strain.use_b_bar)
+            dtau +=
+              (strain.centroid_gradients[b][k] - kin.gradients[b][k]) / 3 * D1;
+          // Rows (xx, xy) and (xy, yy) of delta tau.
+          const Tensor<1, 2> row[2] = {Tensor<1, 2>({dtau[0], dtau[2]}),
+                                       Tensor<1, 2>({dtau[2], dtau[1]})};
+          for (unsigned int a = 0; a < n; ++a)
+            {
+              const unsigned int  i = kernel.component(a);
+              const Tensor<1, 2> &g = kin.gradients[a];
+              K(a, b) += c * (row[i] * g - tau_g[b][i] * g[k]);
+            }
+        }
+      return true;
+    };
+
+    // The points, and the sums of their weights and first moments.
+    double W = 0, Ws = 0, Wt = 0;
     for (const auto &point : cell_points)
       {
         const auto  &props = point.props;
@@ -408,92 +516,53 @@ namespace bsmpm
                                                   props[Property::volume];
         if (props[Property::volume] == 0. || w == 0.)
           continue;
+        if (!add_point(point.st, props, w, true))
+          return n_yielded;
+        W += w;
+        Ws += w * point.st[0];
+        Wt += w * point.st[1];
+      }
 
-        if (point_kinematics == Kinematics::small_strain)
+    // Moment completion (doc/finite-strain.md): where the fitted weights
+    // miss the exact area or first moments of the cell's part inside the
+    // body (a cut cell fitted to its area only), add the one-point rule of
+    // the exact moments, weight v at the exact centroid, and subtract that
+    // of the points, weight W at their centroid. Both virtual points carry
+    // the cell's mean state with their own strain, so a homogeneous
+    // deformation gives every point the same stress and the cell's force
+    // is that of the exact geometry, while the tangent stays the
+    // derivative of the force (and symmetric where the model's is).
+    if (completes_moments() && exact_moments != nullptr && W > 0)
+      {
+        const CellMoments &m         = *exact_moments;
+        const double       tolerance = 1e-10 * std::max(m.v, W);
+        if (std::abs(m.v - W) > tolerance || std::abs(m.vs - Ws) > tolerance ||
+            std::abs(m.vt - Wt) > tolerance)
           {
-            const Tensor<1, 4> de =
-              strain_increment(kernel, strain, point.st, d, B, B_bar);
-            const auto response = respond(props, de, state);
-            n_yielded += response.yielded;
-            const Tensor<1, 4> sigma({response.stress[0][0],
-                                      response.stress[1][1],
-                                      response.stress[2][2],
-                                      response.stress[0][1]});
-            const Tensor<2, 4> D = voigt_tangent(response.tangent);
-            for (unsigned int i = 0; i < n; ++i)
-              DB_bar[i] = w * (D * B_bar[i]);
-            // A symmetric tangent gives a symmetric cell matrix: its upper
-            // triangle here, the lower one mirrored after the points.
-            for (unsigned int i = 0; i < n; ++i)
+            // The mean state of the points, weighted as they integrate.
+            std::vector<double> mean;
+            for (const auto &point : cell_points)
               {
-                f[i] += w * (B_bar[i] * sigma);
-                for (unsigned int j = symmetric ? i : 0; j < n; ++j)
-                  K(i, j) += B_bar[i] * DB_bar[j];
+                const auto  &props = point.props;
+                const double w     = props[Property::weight];
+                if (props[Property::volume] == 0. || w == 0.)
+                  continue;
+                if (mean.empty())
+                  mean.assign(props.size(), 0.);
+                for (unsigned int k = 0; k < props.size(); ++k)
+                  mean[k] += w / W * props[k];
               }
-            continue;
-          }
-
-        // Finite strain (doc/finite-strain.md).
-        const FiniteStrainPoint kin = finite_strain_trial(
-          kernel, strain, point.st, props, d, nullptr, state);
-        if (!(kin.det_f > 0))
-          {
-            // An inverted point: no finite residual, so Newton cuts the step.
-            f = std::numeric_limits<double>::quiet_NaN();
-            return n_yielded;
-          }
-        const auto response = model.update(state);
-        n_yielded += response.yielded;
-        const SymmetricTensor<2, 3> &tau = response.stress;
-        const double                 c   = w / props[Property::det_F];
-        // d tau / d eps^tr on in-plane strains (rows and columns xx, yy,
-        // xy, the xy column counted twice) and D : 1.
-        static constexpr unsigned int index[3][2] = {{0, 0}, {1, 1}, {0, 1}};
-        Tensor<2, 3>                  D;
-        Tensor<1, 3>                  D1;
-        for (unsigned int r = 0; r < 3; ++r)
-          {
-            const unsigned int i = index[r][0], j = index[r][1];
-            for (unsigned int c = 0; c < 3; ++c)
-              D[r][c] = response.tangent[i][j][index[c][0]][index[c][1]] *
-                        (c == 2 ? 2. : 1.);
-            D1[r] = response.tangent[i][j][0][0] +
-                    response.tangent[i][j][1][1] + response.tangent[i][j][2][2];
-          }
-        const Tensor<2, 3> DL = D * kin.log_derivative;
-        const auto         N  = Q1CellKernel::vertex_shape_values(point.st);
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int r = 0; r < 2; ++r)
-            tau_g[i][r] =
-              tau[r][0] * kin.gradients[i][0] + tau[r][1] * kin.gradients[i][1];
-        for (unsigned int a = 0; a < n; ++a)
-          f[a] += c * (tau_g[a][kernel.component(a)] -
-                       body_force[kernel.component(a)] * N[kernel.vertex(a)]);
-        for (unsigned int b = 0; b < n; ++b)
-          {
-            // The unit increment of DoF b (component k) gives
-            // delta b^tr = 2 sym(e_k (x) h), h = b^tr g_b, and
-            // delta eps^tr = L : sym(e_k (x) h) (+ F-bar's volumetric part).
-            const unsigned int k = kernel.component(b);
-            const Tensor<1, 2> h = kin.trial_b * kin.gradients[b];
-            // sym(e_k (x) h) as (xx, yy, xy).
-            const Tensor<1, 3> S = k == 0 ? Tensor<1, 3>({h[0], 0., h[1] / 2}) :
-                                            Tensor<1, 3>({0., h[1], h[0] / 2});
-            Tensor<1, 3>       dtau = DL * S;
-            if (strain.use_b_bar)
-              dtau += (strain.centroid_gradients[b][k] - kin.gradients[b][k]) /
-                      3 * D1;
-            // Rows (xx, xy) and (xy, yy) of delta tau.
-            const Tensor<1, 2> row[2] = {Tensor<1, 2>({dtau[0], dtau[2]}),
-                                         Tensor<1, 2>({dtau[2], dtau[1]})};
-            for (unsigned int a = 0; a < n; ++a)
-              {
-                const unsigned int  i = kernel.component(a);
-                const Tensor<1, 2> &g = kin.gradients[a];
-                K(a, b) += c * (row[i] * g - tau_g[b][i] * g[k]);
-              }
+            const ArrayView<const double> mean_props(mean.data(), mean.size());
+            if (m.v > 0 && !add_point(Point<2>(m.vs / m.v, m.vt / m.v),
+                                      mean_props,
+                                      m.v,
+                                      false))
+              return n_yielded;
+            if (!add_point(Point<2>(Ws / W, Wt / W), mean_props, -W, false))
+              return n_yielded;
           }
       }
+
     if (symmetric)
       for (unsigned int i = 0; i < n; ++i)
         for (unsigned int j = 0; j < i; ++j)
@@ -521,20 +590,71 @@ namespace bsmpm
     std::vector<types::global_dof_index> dof_indices(n);
     Q1CellKernel::LocalVector            d;
     std::vector<PointView>               views;
+    std::vector<double>                  borrowed;
     unsigned long long                   n_yielded = 0;
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
-        if (!cell->is_locally_owned() ||
-            particles.n_particles_in_cell(cell) == 0 ||
-            !points.holds_material(cell))
+        if (!cell->is_locally_owned())
           continue;
+        if (particles.n_particles_in_cell(cell) == 0 ||
+            !points.holds_material(cell))
+          {
+            // A cell of the body without points (a sliver the boundary has
+            // just entered, the part of the top row above the points): four
+            // points with the state of the neighbourhood, a quarter of the
+            // exact area each at (c_s +- r_s, c_t +- r_t), c the exact
+            // centroid and r_s^2, r_t^2 the variances of s and t over the
+            // cell's part in the body. They integrate 1, s, t, s^2, t^2
+            // exactly (the tangent of a constant D holds every deformation
+            // mode of the cell, as the exact moments of the linear path
+            // do), and a homogeneous state stays exact (SystemAssembly
+            // leaves such cells to us).
+            const CellMoments *m =
+              completes_moments() ?
+                &(*exact_moments)[cell->active_cell_index()] :
+                nullptr;
+            if (m == nullptr || !(m->v > 0))
+              continue;
+            borrowed = points.neighbourhood_mean_properties(cell);
+            if (borrowed.empty())
+              continue;
+            borrowed[Property::weight] = m->v / 4;
+            const Point<2> c(m->vs / m->v, m->vt / m->v);
+            const double   r_s =
+              std::sqrt(std::max(0., m->vss / m->v - c[0] * c[0]));
+            const double r_t =
+              std::sqrt(std::max(0., m->vtt / m->v - c[1] * c[1]));
+            const ArrayView<const double> state(borrowed.data(),
+                                                borrowed.size());
+            views.clear();
+            for (const double a : {-1., 1.})
+              for (const double b : {-1., 1.})
+                views.push_back(
+                  {Point<2>(c[0] + a * r_s, c[1] + b * r_t), state});
+            d = MaterialPoints::cell_increment(cell,
+                                               increment,
+                                               prescribed,
+                                               dof_indices);
+            cell_system(kernel, views, d, cell_matrix, cell_vector);
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+            continue;
+          }
         d = MaterialPoints::cell_increment(cell,
                                            increment,
                                            prescribed,
                                            dof_indices);
         gather_points(particles.particles_in_cell(cell), views);
-        n_yielded += cell_system(kernel, views, d, cell_matrix, cell_vector);
+        n_yielded +=
+          cell_system(kernel,
+                      views,
+                      d,
+                      cell_matrix,
+                      cell_vector,
+                      exact_moments ?
+                        &(*exact_moments)[cell->active_cell_index()] :
+                        nullptr);
         constraints.distribute_local_to_global(
           cell_matrix, cell_vector, dof_indices, tangent, internal_force);
       }
@@ -587,7 +707,12 @@ namespace bsmpm
         const bool has_material = points.holds_material(cell);
         CellStrain strain;
         if (has_material)
-          strain = cell_strain(kernel, views, d);
+          strain = cell_strain(kernel,
+                               views,
+                               d,
+                               exact_moments ?
+                                 &(*exact_moments)[cell->active_cell_index()] :
+                                 nullptr);
         for (auto &particle : cell_points)
           {
             const Point<2> st    = particle.get_reference_location();

@@ -246,7 +246,10 @@ namespace bsmpm
         cell_rhs    = 0;
         internal    = 0;
         const bool points_here =
-          material_from_points && material_points->holds_material(cell);
+          material_from_points &&
+          (material_points->holds_material(cell) ||
+           (pointless_cells_from_points &&
+            !material_points->neighbourhood_mean_properties(cell).empty()));
         if (!points_here)
           {
             kernel.add_stiffness(m, cell_matrix);

@@ -246,6 +246,18 @@ namespace bsmpm
     holds_material(const DoFHandler<2>::active_cell_iterator &cell) const;
 
     /**
+     * The mean properties of the points with volume in the locally owned
+     * face neighbours of @p cell (if none holds material, the diagonal
+     * neighbours), weighted by their volumes; empty if none of them holds
+     * material. The state of the neighbourhood for a cell of
+     * the body that holds no point (ConstitutiveUpdate): exact wherever
+     * the state is uniform.
+     */
+    std::vector<double>
+    neighbourhood_mean_properties(
+      const DoFHandler<2>::active_cell_iterator &cell) const;
+
+    /**
      * Finds which owned and ghost cells hold material (collective), for
      * boundary_strain() and boundary_gradient(): a zero-volume point next
      * to a ghost cell must take the same neighbour's field as it would on

@@ -116,12 +116,33 @@ namespace bsmpm
       body_force = force;
     }
 
-    /** Whether the points carry quadrature weights of their own
-     * (Property::weight, set by CutCellQuadrature); else their volume. */
+    /**
+     * With @p moments (by active_cell_index(), from
+     * CutCellQuadrature::correct_cell_moments(); kept by the caller), the
+     * points carry quadrature weights of their own (Property::weight) and
+     * the cells' exact moments complete what these weights miss (see
+     * cell_system()); with nullptr the points integrate with their volumes.
+     */
     void
-    use_quadrature_weights(const bool use)
+    use_cut_cell_quadrature(const std::vector<CellMoments> *moments)
     {
-      quadrature_weights = use;
+      quadrature_weights = moments != nullptr;
+      exact_moments      = moments;
+    }
+
+    /**
+     * Whether the cells' exact moments complete the points' weights and
+     * the cells of the body without points are integrated here (virtual
+     * points, cell_system() and assemble()), and B-bar/F-bar take the exact
+     * centroid: with the cut-cell quadrature in finite strain. Not yet in
+     * small strain, where the virtual points' averaged plastic states kept
+     * Newton from converging on the strip footing (doc/finite-strain.md).
+     */
+    bool
+    completes_moments() const
+    {
+      return exact_moments != nullptr &&
+             point_kinematics == Kinematics::finite_strain;
     }
 
     /**
@@ -194,13 +215,22 @@ namespace bsmpm
      * the tangent @p K (both set, not added to) of the points @p cell_points
      * of one cell for the local increment @p d. Returns how many points
      * with volume yield. Used by assemble(); public for the tests.
+     *
+     * With the cell's exact moments @p exact_moments (and quadrature
+     * weights), where the points' weights miss its area or first moments
+     * (a cut cell whose points carry its area only), two virtual points
+     * with the points' mean state complete them: the exact area at the
+     * exact centroid, minus the points' weight at their centroid. Then the
+     * force of a homogeneous deformation is that of the exact geometry, as
+     * in the linear path (doc/cut-cells.md, doc/finite-strain.md).
      */
     unsigned int
     cell_system(const Q1CellKernel              &kernel,
                 const std::vector<PointView>    &cell_points,
                 const Q1CellKernel::LocalVector &d,
                 FullMatrix<double>              &K,
-                Vector<double>                  &f) const;
+                Vector<double>                  &f,
+                const CellMoments               *exact_moments = nullptr) const;
 
   private:
     /** How the strain of the points of one cell is computed. */
@@ -221,10 +251,14 @@ namespace bsmpm
       std::array<Tensor<1, 2>, 8> centroid_gradients;
     };
 
+    /** The strain of the cell's points; with B-bar its mean volumetric
+     * part is taken at the points' centroid, or at the exact centroid of
+     * @p exact_moments with the cut-cell quadrature. */
     CellStrain
     cell_strain(const Q1CellKernel              &kernel,
                 const std::vector<PointView>    &cell_points,
-                const Q1CellKernel::LocalVector &d) const;
+                const Q1CellKernel::LocalVector &d,
+                const CellMoments               *exact_moments) const;
 
     /** What the finite-strain kinematics give at one point. */
     struct FiniteStrainPoint
@@ -285,7 +319,9 @@ namespace bsmpm
     const bool               b_bar;
     const Kinematics         point_kinematics;
     bool                     quadrature_weights = false;
-    Tensor<1, 2>             body_force;
+    /** See use_cut_cell_quadrature(). */
+    const std::vector<CellMoments> *exact_moments = nullptr;
+    Tensor<1, 2>                    body_force;
     /** See support_stiffness_ratios(). */
     mutable LinearAlgebra::distributed::Vector<double> stiffness_ratio;
   };

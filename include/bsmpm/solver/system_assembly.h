@@ -140,13 +140,19 @@ namespace bsmpm
      * that holds no point (a sliver the boundary has just cut off, given
      * its exact moments and the neighbours' stress by CutCellQuadrature)
      * keeps the elastic stiffness and that stress, as in a linear run:
-     * without them its outer vertices would hold nothing.
+     * without them its outer vertices would hold nothing. With
+     * @p cells_without_points (the cut-cell quadrature is on), such a cell
+     * is left to the points too where a face neighbour holds material:
+     * ConstitutiveUpdate integrates it with the neighbourhood's state
+     * (MaterialPoints::neighbourhood_mean_properties()).
      */
     void
-    leave_material_to_points(const MaterialPoints *points)
+    leave_material_to_points(const MaterialPoints *points,
+                             const bool            cells_without_points = false)
     {
-      material_points      = points;
-      material_from_points = points != nullptr;
+      material_points             = points;
+      material_from_points        = points != nullptr;
+      pointless_cells_from_points = cells_without_points;
     }
 
     /**
@@ -295,12 +301,13 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix boundary_fit_matrix;
     TrilinosWrappers::SparseMatrix tangent_matrix;
     TrilinosWrappers::MPI::Vector  newton_residual;
-    unsigned long long             yielding             = 0;
-    bool                           material_from_points = false;
-    const MaterialPoints          *material_points      = nullptr;
-    bool                           finite_strain        = false;
-    CurveContact                  *contact              = nullptr;
-    bool                           contact_symmetric    = true;
+    unsigned long long             yielding                    = 0;
+    bool                           material_from_points        = false;
+    bool                           pointless_cells_from_points = false;
+    const MaterialPoints          *material_points             = nullptr;
+    bool                           finite_strain               = false;
+    CurveContact                  *contact                     = nullptr;
+    bool                           contact_symmetric           = true;
     /** keep_support_terms(): the curves, their supports' terms. */
     std::vector<unsigned int>                   support_curves;
     std::vector<TrilinosWrappers::SparseMatrix> support_matrices;
