@@ -17,8 +17,8 @@ outcome depends on round-off, CG at its tolerance, accepts either).
 Prints a table of cases and verdicts and exits 1 on any bad verdict.
 
 Usage: sweep.py --bsmpm B --source-dir S [--mpirun M] [--np 1,2]
-                [--timeout T] [--jobs J] [--only SUBSTRING] [--list]
-                [--messages] [--keep]
+                [--timeout T] [--jobs J] [--only SUBSTRING] [--shard K/N]
+                [--list] [--messages] [--keep]
 (S is the repository: its prm/ scenes are the cases' starting points.)
 """
 import argparse
@@ -45,6 +45,10 @@ parser.add_argument("--jobs", type=int, default=2,
                     help="runs at the same time")
 parser.add_argument("--only", default="",
                     help="run only the cases whose name contains this")
+parser.add_argument("--shard", default="1/1",
+                    help="K/N: run only every N-th case, starting with the "
+                         "K-th (ctest runs the N shards as N tests, so that "
+                         "they spread over its slots)")
 parser.add_argument("--list", action="store_true",
                     help="list the cases and exit")
 parser.add_argument("--messages", action="store_true",
@@ -706,9 +710,12 @@ def run(case, np):
 
 
 def main():
-    cases = [c for c in CASES if args.only in c.name]
     names = [c.name for c in CASES]
     assert len(names) == len(set(names)), "duplicate case names"
+    shard, shards = (int(k) for k in args.shard.split("/"))
+    assert 1 <= shard <= shards, "--shard K/N needs 1 <= K <= N"
+    cases = [c for i, c in enumerate(CASES)
+             if args.only in c.name and i % shards == shard - 1]
     if args.list:
         for c in cases:
             print(f"{c.name:36s} {c.kind:13s} {expectation(c)}")
@@ -749,7 +756,8 @@ def main():
                 if r["message"]:
                     print(f"  message: {r['message']}")
     longest = max(r["seconds"] for r in results.values())
-    print(f"\n{len(cases)} cases x {len(processes)} process counts = "
+    part = f" (shard {args.shard} of the {len(CASES)})" if shards > 1 else ""
+    print(f"\n{len(cases)} cases{part} x {len(processes)} process counts = "
           f"{len(jobs)} runs in {total:.1f} s (longest run {longest:.1f} s, "
           f"timeout {args.timeout:.0f} s): {bad} bad verdict(s)")
     return 1 if bad else 0
