@@ -111,6 +111,7 @@ namespace bsmpm
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
+    newton.accept_stall(contact.enabled());
     collapse_detector.parse_parameters(prm);
     displacement_control.parse_parameters(prm);
     region.parse_parameters(prm);
@@ -784,13 +785,19 @@ namespace bsmpm
                                                result.failure);
             return false;
           }
-        newton.report_failure(result,
-                              step,
-                              lambda,
-                              delta,
-                              cuts,
-                              pcout.is_active() ? &pcout.get_stream() :
-                                                  nullptr);
+        newton.report_failure(
+          result,
+          step,
+          lambda,
+          delta,
+          cuts,
+          pcout.is_active() ? &pcout.get_stream() : nullptr,
+          contact.enabled() ?
+            " With rigid bodies: a body that only friction holds has no "
+            "quasi-static equilibrium once it slides (on an incline steeper "
+            "than its friction angle); hold it, or move the rigid body "
+            "instead." :
+            "");
         return false;
       }
     TimerOutput::Scope t(timer, "update points");

@@ -1,5 +1,6 @@
 #include <bsmpm/solver/increment_solver.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -67,10 +68,19 @@ namespace bsmpm
     // have.
     increment = 0;
     increment.update_ghost_values();
-    const double reference =
+    // The scale of the tolerance: |R(0)|, but not below a millionth of the
+    // largest internal force of the run so far. An increment that asks
+    // next to nothing (a body that a rigid body has let go of, its
+    // residual stresses in balance) has an |R(0)| that is round-off of
+    // forces a billion times larger, which a relative tolerance cannot
+    // reach.
+    const double at_zero =
       assembly.newton_system(update, points, increment, prescribed);
+    largest_internal_force =
+      std::max(largest_internal_force, assembly.internal_force_size());
+    const double reference = std::max(at_zero, 1e-6 * largest_internal_force);
     // |R| of the system the assembly holds, that of the start.
-    double start_norm = reference;
+    double start_norm = at_zero;
     if (previous_delta > 0 && previous_increment.size() == increment.size())
       {
         increment.add(delta / previous_delta, previous_increment);

@@ -75,7 +75,16 @@ namespace bsmpm
           }
         // Converged, or nothing to do (no load increment and no stress to
         // balance).
-        if (norm <= tolerance * initial || initial == 0.)
+        // With contact, a residual that stalls at a hundred times the
+        // tolerance while the corrections no longer move the increment (ten
+        // times the tolerance) is converged: a piece whose mean gap sits at
+        // zero switches on and off from one iteration to the next, and the
+        // switch costs a force of the penalty times that gap.
+        const bool stalled = stall_is_convergence && k > 0 &&
+                             norm <= 100 * tolerance * initial &&
+                             result.iterations.back().relative_correction <=
+                               10 * tolerance;
+        if (norm <= tolerance * initial || initial == 0. || stalled)
           {
             result.iterations.push_back(iteration);
             result.converged = true;
@@ -187,7 +196,8 @@ namespace bsmpm
                                const double       lambda,
                                const double       delta,
                                const unsigned int cuts,
-                               std::ostream      *log) const
+                               std::ostream      *log,
+                               const std::string &hint) const
   {
     log_failure(result, lambda, delta, log);
     AssertThrow(cuts < max_step_cuts(),
@@ -199,6 +209,7 @@ namespace bsmpm
                            " of the load: the body may have reached its "
                            "limit load, or the increment needs more cuts "
                            "(Nonlinear solver/Maximum step cuts). The output "
-                           "of the previous step is intact."));
+                           "of the previous step is intact." +
+                           hint));
   }
 } // namespace bsmpm

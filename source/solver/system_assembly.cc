@@ -527,6 +527,7 @@ namespace bsmpm
       }
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
+    internal_force_norm = internal_force.l2_norm();
     newton_residual -= internal_force;
     if (contact != nullptr)
       newton_residual += contact_force;

@@ -1,19 +1,24 @@
 #!/usr/bin/env python3
 """Hertz's line contact of an elastic disc on a rigid flat (plane strain).
 
-Reads the last contact-NNNN.csv and summary.json of a run of
-prm/hertz-disc.prm (a quarter disc of radius R, symmetric about x = 0 and
-about its horizontal diameter, pressed by a rigid flat): the force per unit
-length on the whole disc is P = 2 |F_y| (two quarters make the lower half,
-whose reaction the flat carries), and Hertz's half-width and pressure are
+A run of prm/hertz-disc.prm (a quarter disc of radius R, symmetric about
+x = 0 and about its horizontal diameter, pressed by a rigid flat) gives the
+force on the flat per unit length of the quarter; the whole disc carries
+P = 2 |F_y| (two quarters make the lower half, whose reaction the flat
+carries), and Hertz's half-width and pressure are
 
     a = sqrt(4 P R (1 - nu^2) / (pi E)),
     p(x) = 2 P / (pi a^2) sqrt(a^2 - x^2).
 
-Prints the contact half-width against a, and the relative L2 error of the
-pressure of the contact pieces (constant on each) over the pieces and the
-Hertz zone; with --max-width-error and --max-pressure-error, exits 1 if
-they are exceeded.
+With a directory: prints the contact half-width against a and the relative
+L2 error of the pressure (the touching pieces' constant pressures against
+Hertz's over the pieces, and Hertz's pressure where no piece touches).
+
+With --bsmpm and --prm: runs the scene at the cell sizes of --cells (two
+tracking points per cell along the arc) and fails unless at every size the
+half-width is within one tracking-point spacing of a and the pressure error
+below --max-pressure-error, and the pressure error falls from each size to
+the next.
 """
 import argparse
 import csv
@@ -21,57 +26,97 @@ import glob
 import json
 import math
 import os
+import pathlib
+import subprocess
 import sys
+import tempfile
 
-parser = argparse.ArgumentParser()
-parser.add_argument("directory")
+
+def evaluate(directory, R, E, nu):
+    with open(os.path.join(directory, "summary.json")) as f:
+        summary = json.load(f)
+    last = summary["steps"][-1]["quantities"]
+    P = 2 * abs(last["rigid_body_1_force_y"])
+    a = math.sqrt(4 * P * R * (1 - nu**2) / (math.pi * E))
+    p0 = 2 * P / (math.pi * a)
+
+    def hertz(x):
+        return p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2))
+
+    files = sorted(glob.glob(os.path.join(directory, "contact-*.csv")))
+    rows = [r for r in csv.DictReader(open(files[-1])) if r["body"] == "1"]
+    pieces = [(float(r["x"]), float(r["pressure"]), float(r["length"]))
+              for r in rows]
+    # Half-width: the far end of the last piece that touches.
+    width = max(x + L / 2 for x, p, L in pieces)
+    n = 200
+    error = 0.0
+    for x, p, L in pieces:
+        for i in range(n):
+            error += L / n * (p - hertz(x - L / 2 + L * (i + 0.5) / n)) ** 2
+    if width < a:
+        for i in range(n):
+            error += (a - width) / n * hertz(
+                width + (a - width) * (i + 0.5) / n) ** 2
+    norm = sum(a / n * hertz(a * (i + 0.5) / n) ** 2 for i in range(n))
+    print(f"P = {P:.6g} N/m, a_Hertz = {a:.6g}, p0 = {p0:.6g}; "
+          f"contact half-width {width:.6g} ({len(pieces)} pieces), "
+          f"error {width - a:+.3g} ({(width - a) / a:+.2%}); "
+          f"pressure L2 error {math.sqrt(error / norm):.3g}")
+    return width, a, math.sqrt(error / norm), last
+
+
+parser = argparse.ArgumentParser(description=__doc__)
+parser.add_argument("directory", nargs="?")
+parser.add_argument("--bsmpm")
+parser.add_argument("--prm")
+parser.add_argument("--np", type=int, default=1)
+parser.add_argument("--cells", type=int, nargs="+", default=[32, 64],
+                    help="cells per unit length (1/h) of the runs")
+parser.add_argument("--max-pressure-error", type=float, default=0.2)
 parser.add_argument("--radius", type=float, default=1.0)
 parser.add_argument("--youngs-modulus", type=float, default=1e6)
 parser.add_argument("--poissons-ratio", type=float, default=0.3)
-parser.add_argument("--max-width-error", type=float)
-parser.add_argument("--max-pressure-error", type=float)
 args = parser.parse_args()
+R, E, nu = args.radius, args.youngs_modulus, args.poissons_ratio
 
-with open(os.path.join(args.directory, "summary.json")) as f:
-    summary = json.load(f)
-last = summary["steps"][-1]["quantities"]
-P = 2 * abs(last["rigid_body_1_force_y"])
-E, nu, R = args.youngs_modulus, args.poissons_ratio, args.radius
-a = math.sqrt(4 * P * R * (1 - nu**2) / (math.pi * E))
-p0 = 2 * P / (math.pi * a)
+if args.directory:
+    evaluate(args.directory, R, E, nu)
+    sys.exit(0)
 
-files = sorted(glob.glob(os.path.join(args.directory, "contact-*.csv")))
-rows = [r for r in csv.DictReader(open(files[-1])) if r["body"] == "1"]
-pieces = [(float(r["x"]), float(r["pressure"]), float(r["length"]))
-          for r in rows]
-# Half-width: the far end of the last piece in contact.
-width = max(x + L / 2 for x, p, L in pieces)
-
-
-def hertz(x):
-    return p0 * math.sqrt(max(0.0, 1 - (x / a) ** 2))
-
-
-error = sum(L * (p - hertz(x)) ** 2 for x, p, L in pieces)
-norm = sum(L * hertz(x) ** 2 for x, p, L in pieces)
-# Where Hertz has pressure but no piece touches.
-covered = width
-if covered < a:
-    n = 200
-    for i in range(n):
-        x = covered + (a - covered) * (i + 0.5) / n
-        error += (a - covered) / n * hertz(x) ** 2
-        norm += (a - covered) / n * hertz(x) ** 2
-relative = math.sqrt(error / norm)
-print(f"P = {P:.6g} N/m, a_Hertz = {a:.6g}, p0 = {p0:.6g}")
-print(f"contact half-width {width:.6g} ({len(pieces)} pieces), "
-      f"error {width - a:+.3g} ({(width - a) / a:+.2%})")
-print(f"pressure L2 error {relative:.3g}")
-ok = True
-if args.max_width_error is not None and abs(width - a) > args.max_width_error:
-    print(f"FAIL: half-width error above {args.max_width_error}")
-    ok = False
-if args.max_pressure_error is not None and relative > args.max_pressure_error:
-    print(f"FAIL: pressure error above {args.max_pressure_error}")
-    ok = False
-sys.exit(0 if ok else 1)
+problems = []
+errors = []
+for cells in args.cells:
+    # Two tracking points per cell along the arc (as the scene: 101 at
+    # h = 1/32).
+    n_points = 1 + 100 * cells // 32
+    spacing = math.pi / 2 * R / (n_points - 1)
+    with tempfile.TemporaryDirectory() as directory:
+        command = ([] if args.np == 1 else
+                   ["mpirun", "--allow-run-as-root", "--oversubscribe",
+                    "-np", str(args.np)])
+        command += [str(pathlib.Path(args.bsmpm).resolve()),
+                    str(pathlib.Path(args.prm).resolve()),
+                    "--set", f"Output/Directory={directory}",
+                    "--set", f"Background grid/Cell size={1 / cells}",
+                    "--set",
+                    f"Boundary curves/Curve 1/Number of points={n_points}"]
+        run = subprocess.run(command, capture_output=True, text=True)
+        if run.returncode != 0:
+            sys.exit(f"h = 1/{cells}: exit code {run.returncode}: "
+                     f"{run.stdout[-2000:]} {run.stderr}")
+        print(f"h = 1/{cells}, {n_points} points along the arc: ", end="")
+        width, a, error, _ = evaluate(directory, R, E, nu)
+    errors.append(error)
+    if abs(width - a) > spacing:
+        problems.append(f"h = 1/{cells}: half-width off by more than the "
+                        f"tracking-point spacing {spacing:.4g}")
+    if error > args.max_pressure_error:
+        problems.append(f"h = 1/{cells}: pressure error {error:.3g} above "
+                        f"{args.max_pressure_error}")
+for coarse, fine in zip(errors, errors[1:]):
+    if not fine < coarse:
+        problems.append(f"the pressure error does not fall: {errors}")
+for p in problems:
+    print("FAIL:", p)
+sys.exit(1 if problems else 0)

@@ -112,6 +112,9 @@ namespace bsmpm
      * increment: the start of the next Newton iterations. */
     LinearAlgebra::distributed::Vector<double> previous_increment;
     double                                     previous_delta = 0;
+    /** The largest |f_int| of the run's Newton systems at zero increment:
+     * a floor of the residual's scale. */
+    double largest_internal_force = 0;
   };
 } // namespace bsmpm
 

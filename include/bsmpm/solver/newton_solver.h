@@ -69,6 +69,15 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /** Whether a residual that stalls at a hundred times the tolerance,
+     * with corrections below ten times it, counts as converged: for
+     * contact, whose pieces at zero gap switch on and off (CurveContact). */
+    void
+    accept_stall(const bool yes)
+    {
+      stall_is_convergence = yes;
+    }
+
     /**
      * Iterates from the increment the caller has set. @p reference: the
      * residual of a zero increment, |R(0)|, the scale of the tolerance (a
@@ -95,7 +104,8 @@ namespace bsmpm
                    const double       lambda,
                    const double       delta,
                    const unsigned int cuts,
-                   std::ostream      *log) const;
+                   std::ostream      *log,
+                   const std::string &hint = "") const;
 
     /** Writes why the iterations @p result of the load increment @p delta
      * from @p lambda failed, with their residuals, to @p log (if not
@@ -114,6 +124,7 @@ namespace bsmpm
     }
 
   private:
+    bool stall_is_convergence = false;
     unsigned int max_iterations = 20;
     double       tolerance      = 1e-9;
     unsigned int max_cuts       = 6;

@@ -226,6 +226,14 @@ namespace bsmpm
     void
     check_loads_finite(const unsigned int step) const;
 
+    /** |f_int| of the points at the last newton_system(): the scale of
+     * the stresses that the residual balances. */
+    double
+    internal_force_size() const
+    {
+      return internal_force_norm;
+    }
+
     /** Locally owned points with volume that yield at the last
      * newton_system(), over all processes. */
     unsigned long long
@@ -308,6 +316,7 @@ namespace bsmpm
     bool                           finite_strain               = false;
     CurveContact                  *contact                     = nullptr;
     bool                           contact_symmetric           = true;
+    double                         internal_force_norm         = 0;
     /** keep_support_terms(): the curves, their supports' terms. */
     std::vector<unsigned int>                   support_curves;
     std::vector<TrilinosWrappers::SparseMatrix> support_matrices;
