@@ -77,8 +77,7 @@ namespace bsmpm
         for (const auto &piece : curve.pieces)
           {
             if (curve.condition_of_segment(piece.segment) != nullptr ||
-                grid.locally_owned_cell(piece.cell) ==
-                  grid.dof_handler().end())
+                grid.locally_owned_cell(piece.cell) == grid.dof_handler().end())
               continue;
             const Point<2> middle =
               spline.value((piece.u_begin + piece.u_end) / 2);
@@ -87,10 +86,9 @@ namespace bsmpm
                 // Within two cells of the body where the increment ends,
                 // or of its path: a piece cannot move further in one
                 // increment.
-                const double reach =
-                  2 * h +
-                  (bodies[b].displacement(to) - bodies[b].displacement(from))
-                    .norm();
+                const double reach = 2 * h + (bodies[b].displacement(to) -
+                                              bodies[b].displacement(from))
+                                               .norm();
                 if (bodies[b].surely_further_than(middle, to, reach))
                   continue;
                 if (bodies[b].nearest(middle, to).gap > reach)
@@ -131,7 +129,8 @@ namespace bsmpm
                     const double f = (u - range[0]) / (range[1] - range[0]);
                     contact_piece.positions.push_back(spline.value(u));
                     contact_piece.features.push_back(
-                      bodies[b].nearest(contact_piece.positions.back(), from)
+                      bodies[b]
+                        .nearest(contact_piece.positions.back(), from)
                         .feature);
                     // The first guess of the part that touches: where the
                     // rigid body, moved to the increment's end, overlaps
@@ -200,9 +199,9 @@ namespace bsmpm
     // iteration on, which starts from the touching place.
     if (!(state.gap <= 1e-12 * grid.min_cell_size()))
       return state;
-    state.active         = true;
-    state.normal        /= state.normal.norm();
-    state.midpoint      /= length;
+    state.active = true;
+    state.normal /= state.normal.norm();
+    state.midpoint /= length;
     state.contact_length = length;
     const double L       = length;
 
@@ -279,8 +278,8 @@ namespace bsmpm
       if (piece.touching[q])
         {
           const Tensor<1, 2> &nq = surface[q].normal;
-          state.resultant += piece.weights[q] * state.tangential *
-                             Tensor<1, 2>({-nq[1], nq[0]});
+          state.resultant +=
+            piece.weights[q] * state.tangential * Tensor<1, 2>({-nq[1], nq[0]});
         }
     return state;
   }
@@ -314,8 +313,7 @@ namespace bsmpm
         constraints.distribute_local_to_global(
           state.stiffness, state.force, dof_indices, tangent, force);
       }
-    return Utilities::MPI::min(symmetric ? 1 : 0, grid.mpi_communicator()) ==
-           1;
+    return Utilities::MPI::min(symmetric ? 1 : 0, grid.mpi_communicator()) == 1;
   }
 
 
@@ -327,8 +325,8 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
-    const double                         touching = 1e-12 * grid.min_cell_size();
-    bool                                 changed  = false;
+    const double touching = 1e-12 * grid.min_cell_size();
+    bool         changed  = false;
     std::vector<types::global_dof_index> dof_indices(
       Q1CellKernel::dofs_per_cell);
     for (ContactPiece &piece : pieces)
@@ -373,8 +371,8 @@ namespace bsmpm
           pressed ? -mean_gap / length + 1e-2 * grid.min_cell_size() : touching;
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const bool touches = piece.touching[q] ? gaps[q] <= open :
-                                                     gaps[q] <= touching;
+            const bool touches =
+              piece.touching[q] ? gaps[q] <= open : gaps[q] <= touching;
             if (touches != piece.touching[q])
               {
                 piece.touching[q] = touches;
@@ -395,8 +393,8 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
-    const MPI_Comm communicator = grid.mpi_communicator();
-    const auto    &all_curves   = curves.get_curves();
+    const MPI_Comm      communicator = grid.mpi_communicator();
+    const auto         &all_curves   = curves.get_curves();
     std::vector<double> sums(4 * bodies.size(), 0.);
     std::vector<double> penetration(bodies.size(), 0.);
     // The history of friction: the traction of a piece at the curve points
@@ -423,8 +421,7 @@ namespace bsmpm
         sums[4 * piece.body + 1] -= state.resultant[1];
         sums[4 * piece.body + 2] += state.contact_length;
         sums[4 * piece.body + 3] += state.sliding ? state.contact_length : 0.;
-        penetration[piece.body] =
-          std::max(penetration[piece.body], -state.gap);
+        penetration[piece.body] = std::max(penetration[piece.body], -state.gap);
         last_tractions.insert(last_tractions.end(),
                               {double(piece.body + 1),
                                state.midpoint[0],
@@ -441,10 +438,9 @@ namespace bsmpm
           state.pressure * n + state.tangential * Tensor<1, 2>({-n[1], n[0]});
         for (unsigned int k = 0; k < curve.positions.size(); ++k)
           {
-            const double u_k =
-              k < curve.spline->n_segments() ?
-                curve.spline->segment_parameters(k)[0] :
-                1.;
+            const double u_k = k < curve.spline->n_segments() ?
+                                 curve.spline->segment_parameters(k)[0] :
+                                 1.;
             if ((u_k >= piece.u_begin && u_k < piece.u_end) ||
                 (u_k == 1. && piece.u_end == 1.))
               {
@@ -457,8 +453,7 @@ namespace bsmpm
     Utilities::MPI::max(penetration, communicator, penetration);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-        resultants[b].force =
-          Tensor<1, 2>({sums[4 * b + 0], sums[4 * b + 1]});
+        resultants[b].force = Tensor<1, 2>({sums[4 * b + 0], sums[4 * b + 1]});
         resultants[b].contact_length = sums[4 * b + 2];
         resultants[b].sliding_length = sums[4 * b + 3];
         resultants[b].penetration    = penetration[b];
@@ -479,8 +474,8 @@ namespace bsmpm
   {
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-        const std::string &name = bodies[b].name();
-        const Tensor<1, 2> u    = bodies[b].displacement(to);
+        const std::string &name              = bodies[b].name();
+        const Tensor<1, 2> u                 = bodies[b].displacement(to);
         quantities[name + "_force_x"]        = resultants[b].force[0];
         quantities[name + "_force_y"]        = resultants[b].force[1];
         quantities[name + "_displacement_x"] = u[0];

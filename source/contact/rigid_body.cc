@@ -41,7 +41,7 @@ namespace bsmpm
         bool               at_corner = false;
         unsigned int       feature   = 0;
         Tensor<1, 2>       edge_normal;
-        unsigned int       edge      = 0;
+        unsigned int       edge   = 0;
         bool               inside = false;
         for (unsigned int k = 0; k < n; ++k)
           {
@@ -102,10 +102,10 @@ namespace bsmpm
             return s;
           }
         // The circle of radius r round vertex k.
-        const double d   = (x - vertices[k]).norm();
-        s.gap            = d - radius;
-        s.normal         = d > 0 ? Tensor<1, 2>((x - vertices[k]) / d) :
-                                   Tensor<1, 2>({0., 1.});
+        const double d = (x - vertices[k]).norm();
+        s.gap          = d - radius;
+        s.normal =
+          d > 0 ? Tensor<1, 2>((x - vertices[k]) / d) : Tensor<1, 2>({0., 1.});
         s.turning_radius = d;
         return s;
       }
@@ -182,9 +182,9 @@ namespace bsmpm
       {
         const double d = (x - center).norm();
         SurfacePoint s;
-        s.gap            = d - radius;
-        s.normal         = d > 0 ? Tensor<1, 2>((x - center) / d) :
-                                   Tensor<1, 2>({0., 1.});
+        s.gap = d - radius;
+        s.normal =
+          d > 0 ? Tensor<1, 2>((x - center) / d) : Tensor<1, 2>({0., 1.});
         s.turning_radius = d;
         return s;
       }
@@ -203,8 +203,8 @@ namespace bsmpm
         for (unsigned int i = 0; i <= samples; ++i)
           {
             const double phi = 2 * numbers::PI * i / samples;
-            line.push_back(center + radius * Tensor<1, 2>({std::cos(phi),
-                                                           std::sin(phi)}));
+            line.push_back(
+              center + radius * Tensor<1, 2>({std::cos(phi), std::sin(phi)}));
           }
         return line;
       }
@@ -331,8 +331,8 @@ namespace bsmpm
           }
         else
           {
-            const std::string     text = prm.get("Vertices");
-            const std::string     form = where +
+            const std::string text = prm.get("Vertices");
+            const std::string form = where +
                                      "/Vertices: give at least 3 vertices as "
                                      "'x0, y0; x1, y1; x2, y2', not '" +
                                      text + "'.";
@@ -361,8 +361,9 @@ namespace bsmpm
                         ExcMessage(where +
                                    "/Vertices must run counter-clockwise "
                                    "round a polygon of positive area."));
-            body.shape = std::make_shared<PolygonShape>(
-              vertices, prm.get_double("Corner radius"));
+            body.shape =
+              std::make_shared<PolygonShape>(vertices,
+                                             prm.get_double("Corner radius"));
           }
 
         body.motion = std::make_shared<FunctionParser<1>>(2);
@@ -384,17 +385,18 @@ namespace bsmpm
           {
             const Tensor<1, 2> u = body.displacement(t);
             AssertThrow(std::isfinite(u[0]) && std::isfinite(u[1]),
-                        ExcMessage(where + "/Displacement is not finite at "
-                                           "t = " +
+                        ExcMessage(where +
+                                   "/Displacement is not finite at "
+                                   "t = " +
                                    std::to_string(t) + "."));
           }
 
         const std::string friction = prm.get("Friction");
-        body.surface_friction =
-          friction == "smooth"     ? Friction::smooth :
-          friction == "frictional" ? Friction::frictional :
-                                     Friction::rough;
-        body.mu = prm.get_double("Friction coefficient");
+        body.surface_friction      = friction == "smooth" ? Friction::smooth :
+                                     friction == "frictional" ?
+                                                            Friction::frictional :
+                                                            Friction::rough;
+        body.mu                    = prm.get_double("Friction coefficient");
         prm.leave_subsection();
         bodies.push_back(std::move(body));
       }

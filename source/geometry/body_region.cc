@@ -413,16 +413,18 @@ namespace bsmpm
         // axis are taken exactly along it.
         const auto at = [a](const double r, const double t) {
           double c = std::cos(t), s = std::sin(t);
-          c        = std::abs(c) < 1e-15 ? 0. : c;
-          s        = std::abs(s) < 1e-15 ? 0. : s;
+          c = std::abs(c) < 1e-15 ? 0. : c;
+          s = std::abs(s) < 1e-15 ? 0. : s;
           return Point<2>(a.center[0] + r * c, a.center[1] + r * s);
         };
-        const auto arc = [at](const double r, const double t0, const double t1) {
-          return [=](const double f) { return at(r, t0 + f * (t1 - t0)); };
-        };
-        const auto ray = [at](const double t, const double r0, const double r1) {
-          return [=](const double f) { return at(r0 + f * (r1 - r0), t); };
-        };
+        const auto arc =
+          [at](const double r, const double t0, const double t1) {
+            return [=](const double f) { return at(r, t0 + f * (t1 - t0)); };
+          };
+        const auto ray =
+          [at](const double t, const double r0, const double r1) {
+            return [=](const double f) { return at(r0 + f * (r1 - r0), t); };
+          };
         names = {"start edge", "outer arc", "end edge", "inner arc"};
         parts = {ray(a.start_angle, a.inner_radius, a.outer_radius),
                  arc(a.outer_radius, a.start_angle, a.end_angle),

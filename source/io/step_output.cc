@@ -66,10 +66,12 @@ namespace bsmpm
         std::vector<std::vector<Point<2>>> outlines;
         for (const auto &body : contact->rigid_bodies())
           outlines.push_back(body.outline(load_factor));
-        output.write_serial_series(
-          "rigid_bodies", step, load_factor, [&](std::ostream &out) {
-            CurveOutput::write_outlines(out, outlines);
-          });
+        output.write_serial_series("rigid_bodies",
+                                   step,
+                                   load_factor,
+                                   [&](std::ostream &out) {
+                                     CurveOutput::write_outlines(out, outlines);
+                                   });
         std::ostringstream tractions;
         contact->write_tractions(tractions, grid.mpi_communicator());
         const std::string number = Utilities::int_to_string(step, 4);

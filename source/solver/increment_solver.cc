@@ -105,34 +105,34 @@ namespace bsmpm
       return assembly.newton_system(update, points, increment, prescribed);
     };
     const auto correct = [&]() {
-        TimerOutput::Scope            t(timer, "solve");
-        TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
-                                                 grid.mpi_communicator());
-        // A pressure that follows the boundary within the step (finite
-        // strain) has an unsymmetric load stiffness.
-        const bool symmetric =
-          update.symmetric_tangent() && assembly.contact_tangent_symmetric() &&
-          !(update.kinematics() ==
-              ConstitutiveUpdate::Kinematics::finite_strain &&
-            parts.boundary_curves.has_loads());
-        const auto report = parts.linear_solver.solve(assembly.tangent(),
-                                                      correction,
-                                                      assembly.residual(),
-                                                      grid.dof_handler(),
-                                                      symmetric);
-        assembly.constraints().distribute(correction);
-        for (const auto i : grid.locally_owned_dofs())
-          increment(i) += correction(i);
-        increment.update_ghost_values();
-        ++solves.n_solves;
-        solves.method = report.method;
-        solves.iterations += report.iterations;
-        solves.refinement_steps += report.refinement_steps;
-        solves.relative_residual = report.relative_residual;
-        const double size        = increment.l2_norm();
-        last_correction          = correction;
-        return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
-                              report.iterations);
+      TimerOutput::Scope            t(timer, "solve");
+      TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
+                                               grid.mpi_communicator());
+      // A pressure that follows the boundary within the step (finite
+      // strain) has an unsymmetric load stiffness.
+      const bool symmetric =
+        update.symmetric_tangent() && assembly.contact_tangent_symmetric() &&
+        !(update.kinematics() ==
+            ConstitutiveUpdate::Kinematics::finite_strain &&
+          parts.boundary_curves.has_loads());
+      const auto report = parts.linear_solver.solve(assembly.tangent(),
+                                                    correction,
+                                                    assembly.residual(),
+                                                    grid.dof_handler(),
+                                                    symmetric);
+      assembly.constraints().distribute(correction);
+      for (const auto i : grid.locally_owned_dofs())
+        increment(i) += correction(i);
+      increment.update_ghost_values();
+      ++solves.n_solves;
+      solves.method = report.method;
+      solves.iterations += report.iterations;
+      solves.refinement_steps += report.refinement_steps;
+      solves.relative_residual = report.relative_residual;
+      const double size        = increment.l2_norm();
+      last_correction          = correction;
+      return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
+                            report.iterations);
     };
     const auto step_back = [&](const double alpha) {
       // From x + a dx to x + (a - alpha) dx.

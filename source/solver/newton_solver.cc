@@ -80,10 +80,9 @@ namespace bsmpm
         // times the tolerance) is converged: a piece whose mean gap sits at
         // zero switches on and off from one iteration to the next, and the
         // switch costs a force of the penalty times that gap.
-        const bool stalled = stall_is_convergence && k > 0 &&
-                             norm <= 100 * tolerance * initial &&
-                             result.iterations.back().relative_correction <=
-                               10 * tolerance;
+        const bool stalled =
+          stall_is_convergence && k > 0 && norm <= 100 * tolerance * initial &&
+          result.iterations.back().relative_correction <= 10 * tolerance;
         if (norm <= tolerance * initial || initial == 0. || stalled)
           {
             result.iterations.push_back(iteration);

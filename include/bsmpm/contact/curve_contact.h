@@ -152,11 +152,11 @@ namespace bsmpm
       unsigned int                curve;
       std::array<unsigned int, 2> cell;
       /** The part of the rigid outline it faces (SurfacePoint::feature). */
-      unsigned int                feature;
-      double                      u_begin;
-      double                      u_end;
-      std::vector<Point<2>>       positions;
-      std::vector<double>         weights; ///< ds
+      unsigned int          feature;
+      double                u_begin;
+      double                u_end;
+      std::vector<Point<2>> positions;
+      std::vector<double>   weights; ///< ds
       /** The part of the outline each Gauss point measures its gap to:
        * the nearest at the increment's start. */
       std::vector<unsigned int> features;
@@ -173,13 +173,13 @@ namespace bsmpm
     /** What contact does on a piece for a displacement increment. */
     struct PieceState
     {
-      bool         active     = false;
-      bool         sliding    = false;
+      bool active  = false;
+      bool sliding = false;
       /** Minus the mean penetration where the piece touches. */
       double       gap            = 0;
       double       contact_length = 0; ///< of the part that touches
-      double       pressure   = 0;
-      double       tangential = 0;
+      double       pressure       = 0;
+      double       tangential     = 0;
       Tensor<1, 2> normal; ///< mean normal of the rigid surface
       Point<2>     midpoint;
       /** Force on the body (N) and the piece's share of the rigid body's
@@ -191,17 +191,17 @@ namespace bsmpm
     };
 
     PieceState
-    evaluate(const ContactPiece                &piece,
-             const BackgroundGrid              &grid,
-             const Q1CellKernel                &kernel,
-             const Q1CellKernel::LocalVector   &d) const;
+    evaluate(const ContactPiece              &piece,
+             const BackgroundGrid            &grid,
+             const Q1CellKernel              &kernel,
+             const Q1CellKernel::LocalVector &d) const;
 
     std::vector<RigidBody> bodies;
     double                 gamma          = 10;
     unsigned int           n_gauss_points = 4;
 
-    double                  penalty = 0;
-    double                  from = 0, to = 0;
+    double                    penalty = 0;
+    double                    from = 0, to = 0;
     std::vector<ContactPiece> pieces;
     /** Per curve and point: the traction on the body after the last
      * increment (zero where no contact). */

@@ -124,11 +124,11 @@ namespace bsmpm
     }
 
   private:
-    bool stall_is_convergence = false;
-    unsigned int max_iterations = 20;
-    double       tolerance      = 1e-9;
-    unsigned int max_cuts       = 6;
-    unsigned int line_search    = 5;
+    bool         stall_is_convergence = false;
+    unsigned int max_iterations       = 20;
+    double       tolerance            = 1e-9;
+    unsigned int max_cuts             = 6;
+    unsigned int line_search          = 5;
   };
 } // namespace bsmpm
 
