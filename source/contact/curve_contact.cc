@@ -286,6 +286,27 @@ namespace bsmpm
 
 
 
+  CurveContact::PieceState
+  CurveContact::evaluate(
+    const ContactPiece                               &piece,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    std::vector<types::global_dof_index>             &dof_indices) const
+  {
+    return evaluate(piece,
+                    grid,
+                    kernel,
+                    MaterialPoints::cell_increment(grid.locally_owned_cell(
+                                                     piece.cell),
+                                                   increment,
+                                                   prescribed,
+                                                   dof_indices));
+  }
+
+
+
   bool
   CurveContact::add_newton_terms(
     const BackgroundGrid                             &grid,
@@ -301,12 +322,8 @@ namespace bsmpm
     bool symmetric = true;
     for (const ContactPiece &piece : pieces)
       {
-        const auto d =
-          MaterialPoints::cell_increment(grid.locally_owned_cell(piece.cell),
-                                         increment,
-                                         prescribed,
-                                         dof_indices);
-        const PieceState state = evaluate(piece, grid, kernel, d);
+        const PieceState state =
+          evaluate(piece, grid, kernel, increment, prescribed, dof_indices);
         if (!state.active)
           continue;
         symmetric = symmetric && !state.sliding;
@@ -408,12 +425,8 @@ namespace bsmpm
       Q1CellKernel::dofs_per_cell);
     for (const ContactPiece &piece : pieces)
       {
-        const auto d =
-          MaterialPoints::cell_increment(grid.locally_owned_cell(piece.cell),
-                                         increment,
-                                         prescribed,
-                                         dof_indices);
-        const PieceState state = evaluate(piece, grid, kernel, d);
+        const PieceState state =
+          evaluate(piece, grid, kernel, increment, prescribed, dof_indices);
         if (!state.active)
           continue;
         // The rigid body feels the opposite of what the curve feels.
