@@ -196,6 +196,16 @@ namespace bsmpm
              const Q1CellKernel              &kernel,
              const Q1CellKernel::LocalVector &d) const;
 
+    /** As above, at the nodal increment of the piece's cell (its DoFs
+     * into @p dof_indices). */
+    PieceState
+    evaluate(const ContactPiece                               &piece,
+             const BackgroundGrid                             &grid,
+             const Q1CellKernel                               &kernel,
+             const LinearAlgebra::distributed::Vector<double> &increment,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             std::vector<types::global_dof_index> &dof_indices) const;
+
     std::vector<RigidBody> bodies;
     double                 gamma          = 10;
     unsigned int           n_gauss_points = 4;
