@@ -367,11 +367,13 @@ namespace bsmpm
           }
 
         body.motion = std::make_shared<FunctionParser<1>>(2);
+        // The parser finds an unknown name only when it first evaluates.
         try
           {
             body.motion->initialize("t",
                                     prm.get("Displacement"),
                                     std::map<std::string, double>());
+            body.displacement(0.);
           }
         catch (...)
           {

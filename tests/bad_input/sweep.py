@@ -517,6 +517,30 @@ case("stress_frame_beyond_full_turn", "angle",
      "Exact solution/Constant stress/Angle: 405 degrees is more than a full "
      "turn")
 
+# --- rigid bodies ----------------------------------------------------------
+case("rigid_body_clockwise", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 0; 0, 1; 1, 1; 1, 0"),
+     "must run counter-clockwise")
+case("rigid_body_two_vertices", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 0; 1, 0"), "give at least 3 vertices")
+case("rigid_body_vertex_not_a_point", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 0; 1; 1, 1"), "give at least 3 vertices")
+case("rigid_body_zero_radius", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Radius=0"), "Radius must be positive")
+case("rigid_body_bad_motion", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Displacement=0; -0.1*s"), "is not two expressions")
+case("rigid_body_one_motion_component", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Displacement=-0.1*t"), "is not two expressions")
+case("rigid_body_motion_not_finite", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Displacement=0; 1/(t-0.5)"), "is not finite")
+
 # --- command line ----------------------------------------------------------
 case("set_without_argument", "command line", COLUMN_SMALL + ["--set"],
      "--set needs an argument")
