@@ -11,6 +11,32 @@
 
 namespace bsmpm
 {
+  namespace
+  {
+    /** The figures of the Newton iterations of one increment, and of their
+     * linear solves, into the step's record. */
+    void
+    record_newton(const IncrementSolver::LinearSolves &solves,
+                  const NewtonSolver::Result          &result,
+                  RunSummary::Step                    &record)
+    {
+      if (solves.n_solves > 0)
+        {
+          record.solver            = solves.method;
+          record.relative_residual = solves.relative_residual;
+        }
+      record.iterations = solves.iterations;
+      record.refinement_steps += solves.refinement_steps;
+      for (const auto &iteration : result.iterations)
+        {
+          record.newton_residuals.push_back(iteration.relative_residual);
+          record.newton_corrections.push_back(iteration.relative_correction);
+        }
+    }
+  } // namespace
+
+
+
   Scene::Scene(const MPI_Comm communicator)
     : communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -688,15 +714,7 @@ namespace bsmpm
                                              increment,
                                              load_increment,
                                              solves);
-        record.solver            = solves.method;
-        record.relative_residual = solves.relative_residual;
-        record.iterations        = solves.iterations;
-        record.refinement_steps += solves.refinement_steps;
-        for (const auto &iteration : result.iterations)
-          {
-            record.newton_residuals.push_back(iteration.relative_residual);
-            record.newton_corrections.push_back(iteration.relative_correction);
-          }
+        record_newton(solves, result, record);
         if (!result.converged)
           {
             newton.report_failure(result,
@@ -756,18 +774,7 @@ namespace bsmpm
         result.converged = false;
         result.failure   = "the linear solve failed: " + message_of(e);
       }
-    if (solves.n_solves > 0)
-      {
-        record.solver            = solves.method;
-        record.relative_residual = solves.relative_residual;
-      }
-    record.iterations = solves.iterations;
-    record.refinement_steps += solves.refinement_steps;
-    for (const auto &iteration : result.iterations)
-      {
-        record.newton_residuals.push_back(iteration.relative_residual);
-        record.newton_corrections.push_back(iteration.relative_correction);
-      }
+    record_newton(solves, result, record);
     if (!result.converged)
       {
         // Under load control a step that cannot be converged however far it
