@@ -168,9 +168,10 @@ namespace bsmpm
     // the part of the outline each faces.
     std::vector<std::array<Tensor<1, 2>, n>> N(n_q);
     std::vector<Tensor<1, 2>>                u(n_q);
-    std::vector<SurfacePoint>                surface(n_q);
     PieceState                               state;
-    double                                   length = 0;
+    std::vector<SurfacePoint>               &surface = state.surface;
+    surface.resize(n_q);
+    double length = 0;
     for (unsigned int q = 0; q < n_q; ++q)
       {
         const Point<2> st =
@@ -348,31 +349,8 @@ namespace bsmpm
       Q1CellKernel::dofs_per_cell);
     for (ContactPiece &piece : pieces)
       {
-        const auto d =
-          MaterialPoints::cell_increment(grid.locally_owned_cell(piece.cell),
-                                         increment,
-                                         prescribed,
-                                         dof_indices);
-        const unsigned int  n_q = piece.positions.size();
-        std::vector<double> gaps(n_q);
-        double              mean_gap = 0, length = 0;
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const Point<2> st =
-              grid.local_coordinates(piece.positions[q], piece.cell);
-            Tensor<1, 2> u;
-            for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-              u += d[i] * kernel.shape_value(i, st);
-            gaps[q] =
-              bodies[piece.body]
-                .to_feature(piece.positions[q] + u, to, piece.features[q])
-                .gap;
-            if (piece.touching[q])
-              {
-                mean_gap += piece.weights[q] * gaps[q];
-                length += piece.weights[q];
-              }
-          }
+        const PieceState state =
+          evaluate(piece, grid, kernel, increment, prescribed, dof_indices);
         // A Gauss point that penetrates joins the part; one leaves it only
         // where it stands clearly open: further than the part is closed on
         // average and than a hundredth of a cell. The pressure of the part
@@ -380,16 +358,15 @@ namespace bsmpm
         // plastic soil the gaps scatter by about the penetration; letting
         // every point with a gap above zero go shrank the contact under a
         // footing to a few pieces of cells, with pressures ten times the
-        // mean.
-        // A part that is open on average (the edge of a contact that the
+        // mean. A part open on average (the edge of a contact that the
         // first guess overestimated) keeps only the points that penetrate.
-        const bool   pressed = length > 0 && mean_gap <= touching * length;
         const double open =
-          pressed ? -mean_gap / length + 1e-2 * grid.min_cell_size() : touching;
-        for (unsigned int q = 0; q < n_q; ++q)
+          state.active ? -state.gap + 1e-2 * grid.min_cell_size() : touching;
+        for (unsigned int q = 0; q < piece.positions.size(); ++q)
           {
-            const bool touches =
-              piece.touching[q] ? gaps[q] <= open : gaps[q] <= touching;
+            const double gap = state.surface[q].gap;
+            const bool   touches =
+              piece.touching[q] ? gap <= open : gap <= touching;
             if (touches != piece.touching[q])
               {
                 piece.touching[q] = touches;

@@ -181,7 +181,9 @@ namespace bsmpm
       double       pressure       = 0;
       double       tangential     = 0;
       Tensor<1, 2> normal; ///< mean normal of the rigid surface
-      Point<2>     midpoint;
+      /** Every Gauss point's gap and normal, touching or not. */
+      std::vector<SurfacePoint> surface;
+      Point<2>                  midpoint;
       /** Force on the body (N) and the piece's share of the rigid body's
        * reaction is its opposite. */
       Tensor<1, 2> resultant;
