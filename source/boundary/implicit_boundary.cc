@@ -252,7 +252,7 @@ namespace bsmpm
                   const double   dD  = d_function_derivative(phi, delta);
                   const Point<2> x   = c + phi * normal;
                   const Point<2> st  = grid.local_coordinates(x, piece.cell);
-                  points.push_back({x, D, w});
+                  points.push_back({x, D, w, cell->active_cell_index(), st});
 
                   Voigt strain_a;
                   if (prescribed)

@@ -128,7 +128,7 @@ namespace bsmpm
     for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
       for (std::size_t i = 0; i + 3 < part.size(); i += 4)
         band.push_back(
-          {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3]});
+          {Point<2>(part[i], part[i + 1]), part[i + 2], part[i + 3], 0, {}});
     output.write_serial_series(
       "curves", step, load_factor, [this](std::ostream &out) {
         CurveOutput::write_curves(out, boundary_curves);

@@ -395,12 +395,14 @@ namespace bsmpm
 
 
   unsigned int
-  ConstitutiveUpdate::cell_system(const Q1CellKernel              &kernel,
-                                  const std::vector<PointView>    &cell_points,
-                                  const Q1CellKernel::LocalVector &d,
-                                  FullMatrix<double>              &K,
-                                  Vector<double>                  &f,
-                                  const CellMoments *exact_moments) const
+  ConstitutiveUpdate::cell_system(
+    const Q1CellKernel                  &kernel,
+    const std::vector<PointView>        &cell_points,
+    const Q1CellKernel::LocalVector     &d,
+    FullMatrix<double>                  &K,
+    Vector<double>                      &f,
+    const CellMoments                   *exact_moments,
+    const std::vector<SupportBandPoint> *band) const
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const CellStrain       strain =
@@ -416,15 +418,30 @@ namespace bsmpm
     f = 0;
     // Adds the point at @p st with properties @p props and weight @p w;
     // false if it is inverted (f is then NaN).
+    // With @p elastic, the point responds with the elastic stiffness
+    // whatever its state (the band's elastic layer below).
     const auto add_point = [&](const Point<2>                &st,
                                const ArrayView<const double> &props,
                                const double                   w,
-                               const bool                     count) {
+                               const bool                     count,
+                               const bool                     elastic = false) {
       if (point_kinematics == Kinematics::small_strain)
         {
           const Tensor<1, 4> de =
             strain_increment(kernel, strain, st, d, B, B_bar);
-          const auto response = respond(props, de, state);
+          ConstitutiveResponse response;
+          if (elastic)
+            {
+              SymmetricTensor<2, 3> e = stored_elastic_strain(props);
+              e[0][0] += de[0];
+              e[1][1] += de[1];
+              e[2][2] += de[2];
+              e[0][1] += de[3] / 2;
+              response.tangent = model.elastic_tangent();
+              response.stress  = response.tangent * e;
+            }
+          else
+            response = respond(props, de, state);
           n_yielded += count && response.yielded;
           const Tensor<1, 4> sigma({response.stress[0][0],
                                     response.stress[1][1],
@@ -523,6 +540,24 @@ namespace bsmpm
         Wt += w * point.st[1];
       }
 
+    // The mean state of the points, weighted as they integrate.
+    const auto mean_state = [&]() {
+      std::vector<double> mean;
+      for (const auto &point : cell_points)
+        {
+          const auto  &props = point.props;
+          const double w     = quadrature_weights ? props[Property::weight] :
+                                                    props[Property::volume];
+          if (props[Property::volume] == 0. || w == 0.)
+            continue;
+          if (mean.empty())
+            mean.assign(props.size(), 0.);
+          for (unsigned int k = 0; k < props.size(); ++k)
+            mean[k] += w / W * props[k];
+        }
+      return mean;
+    };
+
     // Moment completion (doc/finite-strain.md): where the fitted weights
     // miss the exact area or first moments of the cell's part inside the
     // body (a cut cell fitted to its area only), add the one-point rule of
@@ -539,19 +574,7 @@ namespace bsmpm
         if (std::abs(m.v - W) > tolerance || std::abs(m.vs - Ws) > tolerance ||
             std::abs(m.vt - Wt) > tolerance)
           {
-            // The mean state of the points, weighted as they integrate.
-            std::vector<double> mean;
-            for (const auto &point : cell_points)
-              {
-                const auto  &props = point.props;
-                const double w     = props[Property::weight];
-                if (props[Property::volume] == 0. || w == 0.)
-                  continue;
-                if (mean.empty())
-                  mean.assign(props.size(), 0.);
-                for (unsigned int k = 0; k < props.size(); ++k)
-                  mean[k] += w / W * props[k];
-              }
+            const std::vector<double>     mean = mean_state();
             const ArrayView<const double> mean_props(mean.data(), mean.size());
             if (m.v > 0 && !add_point(Point<2>(m.vs / m.v, m.vt / m.v),
                                       mean_props,
@@ -560,6 +583,23 @@ namespace bsmpm
               return n_yielded;
             if (!add_point(Point<2>(Ws / W, Wt / W), mean_props, -W, false))
               return n_yielded;
+          }
+      }
+
+    // An implicit boundary band in the cell (small strain): the band is an
+    // elastic layer, so the points' material is taken out of it and the
+    // elastic one put in, each by virtual points with the points' mean
+    // state at the band's quadrature points (see the header). Where that
+    // state responds elastically the two cancel exactly.
+    if (band != nullptr && point_kinematics == Kinematics::small_strain &&
+        W > 0)
+      {
+        const std::vector<double>     mean = mean_state();
+        const ArrayView<const double> mean_props(mean.data(), mean.size());
+        for (const auto &q : *band)
+          {
+            add_point(q.st, mean_props, q.weight, false, true);
+            add_point(q.st, mean_props, -q.weight, false);
           }
       }
 
@@ -581,7 +621,8 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     const AffineConstraints<double>                  &constraints,
     TrilinosWrappers::SparseMatrix                   &tangent,
-    TrilinosWrappers::MPI::Vector                    &internal_force) const
+    TrilinosWrappers::MPI::Vector                    &internal_force,
+    const SupportBands                               *bands) const
   {
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
     const auto                          &particles = points.particle_handler();
@@ -646,6 +687,10 @@ namespace bsmpm
                                            prescribed,
                                            dof_indices);
         gather_points(particles.particles_in_cell(cell), views);
+        const auto *band =
+          bands != nullptr && !(*bands)[cell->active_cell_index()].empty() ?
+            &(*bands)[cell->active_cell_index()] :
+            nullptr;
         n_yielded +=
           cell_system(kernel,
                       views,
@@ -654,7 +699,8 @@ namespace bsmpm
                       cell_vector,
                       exact_moments ?
                         &(*exact_moments)[cell->active_cell_index()] :
-                        nullptr);
+                        nullptr,
+                      band);
         constraints.distribute_local_to_global(
           cell_matrix, cell_vector, dof_indices, tangent, internal_force);
       }

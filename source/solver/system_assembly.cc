@@ -441,6 +441,15 @@ namespace bsmpm
                                          rhs,
                                          only,
                                          assembly_moments);
+        // The band by cell, for the tangent of nonlinear materials.
+        if (only == nullptr && material_from_points)
+          {
+            support_bands.assign(parts.grid.triangulation().n_active_cells(),
+                                 {});
+            for (const auto &b : parts.implicit_boundary.band_points())
+              support_bands[b.cell_index].push_back(
+                {b.reference_position, b.weight});
+          }
       }
     if (uses(BoundaryCurve::DirichletMethod::nitsche))
       {
@@ -502,14 +511,16 @@ namespace bsmpm
     newton_residual.sadd(-1., 1., system_rhs);
     TrilinosWrappers::MPI::Vector internal_force(newton_residual);
     internal_force = 0;
-    yielding       = update.assemble(points,
-                               grid,
-                               *cell_kernel,
-                               increment,
-                               prescribed,
-                               system_constraints,
-                               tangent_matrix,
-                               internal_force);
+    yielding =
+      update.assemble(points,
+                      grid,
+                      *cell_kernel,
+                      increment,
+                      prescribed,
+                      system_constraints,
+                      tangent_matrix,
+                      internal_force,
+                      support_bands.empty() ? nullptr : &support_bands);
     // Contact forces are loads that depend on the increment: they join the
     // residual with the sign of the loads and their derivative the tangent.
     TrilinosWrappers::MPI::Vector contact_force;

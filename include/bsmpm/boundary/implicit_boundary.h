@@ -51,12 +51,15 @@ namespace bsmpm
   class ImplicitBoundary
   {
   public:
-    /** A quadrature point of the band, kept for output. */
+    /** A quadrature point of the band, kept for output and for the
+     * tangent of nonlinear materials (ConstitutiveUpdate::SupportBandPoint). */
     struct BandPoint
     {
-      Point<2> position;
-      double   d_function;
-      double   weight;
+      Point<2>     position;
+      double       d_function;
+      double       weight;
+      unsigned int cell_index;         // active_cell_index()
+      Point<2>     reference_position; // in that cell
     };
 
     static void

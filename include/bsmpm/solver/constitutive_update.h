@@ -99,6 +99,20 @@ namespace bsmpm
       return point_kinematics;
     }
 
+    /**
+     * A quadrature point of the part of a cell where a support carries its
+     * own elastic stiffness in place of the points' (the implicit boundary's
+     * band, doc/newton.md "Supports in the tangent"), in the cell's
+     * reference coordinates.
+     */
+    struct SupportBandPoint
+    {
+      Point<2> st;
+      double   weight;
+    };
+    /** Those points by active_cell_index(). */
+    using SupportBands = std::vector<std::vector<SupportBandPoint>>;
+
     /** Whether the material's tangent is symmetric: not with F-bar or a
      * model without a symmetric tangent (doc/finite-strain.md). */
     bool
@@ -150,7 +164,8 @@ namespace bsmpm
      * increment @p increment (with ghost values) and, if given, the
      * prescribed nodal values @p prescribed, through @p constraints.
      * Neither is compressed. Returns the number of locally owned points with
-     * volume that yield.
+     * volume that yield. With @p bands, the tangent of a cell crossed by a
+     * support's band is stiffened there (cell_system()).
      */
     unsigned long long
     assemble(const MaterialPoints                             &points,
@@ -160,7 +175,8 @@ namespace bsmpm
              const LinearAlgebra::distributed::Vector<double> *prescribed,
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &tangent,
-             TrilinosWrappers::MPI::Vector &internal_force) const;
+             TrilinosWrappers::MPI::Vector                    &internal_force,
+             const SupportBands *bands = nullptr) const;
 
     /**
      * Stores the state at the end of the step in every point (tracking
@@ -223,14 +239,28 @@ namespace bsmpm
      * exact centroid, minus the points' weight at their centroid. Then the
      * force of a homogeneous deformation is that of the exact geometry, as
      * in the linear path (doc/cut-cells.md, doc/finite-strain.md).
+     *
+     * With @p band (small strain), the quadrature points of an implicit
+     * boundary band in the cell: the band's terms (ImplicitBoundary) replace
+     * the regular elastic energy there by that of the band's field, which
+     * holds the support like a penalty of order E / delta. With a material
+     * that yields, the points' energy is not the elastic one the band takes
+     * out, and the sum is indefinite where they yield (CG fails, Newton's
+     * correction stops descending, steps are cut). So the band is an elastic
+     * layer: two virtual points per band point, with the points' mean state,
+     * put the elastic material in (+w) and take the points' material out
+     * (-w). Where the mean state responds elastically they cancel to the
+     * last bit; where it yields they add int_band Bbar^T (C - D) Bbar >= 0,
+     * and force and tangent stay consistent (doc/newton.md).
      */
     unsigned int
-    cell_system(const Q1CellKernel              &kernel,
-                const std::vector<PointView>    &cell_points,
-                const Q1CellKernel::LocalVector &d,
-                FullMatrix<double>              &K,
-                Vector<double>                  &f,
-                const CellMoments               *exact_moments = nullptr) const;
+    cell_system(const Q1CellKernel                  &kernel,
+                const std::vector<PointView>        &cell_points,
+                const Q1CellKernel::LocalVector     &d,
+                FullMatrix<double>                  &K,
+                Vector<double>                      &f,
+                const CellMoments                   *exact_moments = nullptr,
+                const std::vector<SupportBandPoint> *band = nullptr) const;
 
   private:
     /** How the strain of the points of one cell is computed. */

@@ -317,6 +317,9 @@ namespace bsmpm
     CurveContact                  *contact                     = nullptr;
     bool                           contact_symmetric           = true;
     double                         internal_force_norm         = 0;
+    /** The implicit boundary's band by cell, for the tangent of nonlinear
+     * materials (ConstitutiveUpdate::cell_system()). */
+    ConstitutiveUpdate::SupportBands support_bands;
     /** keep_support_terms(): the curves, their supports' terms. */
     std::vector<unsigned int>                   support_curves;
     std::vector<TrilinosWrappers::SparseMatrix> support_matrices;
