@@ -470,8 +470,9 @@ namespace bsmpm
                   const Point<2> x   = c + phi * normal;
                   const Point<2> st  = grid.local_coordinates(x, piece.cell);
                   // The band corrections of assemble() as full gradients
-                  // (its strains are their symmetric parts).
-                  Tensor<2, 2> f = unit_symmetric_tensor<2>();
+                  // (its strains are their symmetric parts), and the
+                  // band's mismatch E = Delta(d) - Delta_g.
+                  Tensor<2, 2> f = unit_symmetric_tensor<2>(), E;
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       G[i]     = kernel.shape_gradient(i, st);
@@ -482,39 +483,55 @@ namespace bsmpm
                                    dD * outer_product(trace[i], normal);
                       T[i] = G[i] + Delta[i];
                       f += d[i] * G[i];
+                      E += d[i] * Delta[i];
                     }
-                  Tensor<2, 2> f_band = f;
-                  for (unsigned int i = 0; i < n; ++i)
-                    f_band += d[i] * Delta[i];
                   if (imposes)
-                    f_band -= roller ?
-                                dD * outer_product(g, normal) -
-                                  (1 - D) * outer_product(dg_dt, tangent_) :
-                                dD * outer_product(g, normal);
-                  Tensor<2, 2> P_band, P;
-                  Tensor<4, 2> A_band, A;
-                  if (!stress(state, f_band, P_band, A_band) ||
-                      !stress(state, f, P, A))
+                    E -= roller ? dD * outer_product(g, normal) -
+                                    (1 - D) * outer_product(dg_dt, tangent_) :
+                                  dD * outer_product(g, normal);
+                  // P(f + E) linearised about the grid's f: E is the
+                  // constraint's, of order (w(x_b) - g) / delta, and would
+                  // invert the band long before Newton has met the support
+                  // (doc/finite-strain.md, "Supports in finite strain").
+                  Tensor<2, 2> P;
+                  Tensor<4, 2> A;
+                  if (!stress(state, f, P, A))
                     {
-                      // An inverted band point: no finite residual, so
-                      // Newton cuts the step.
-                      cell_force = std::numeric_limits<double>::quiet_NaN();
+                      // An inverted point: no finite residual, so Newton
+                      // cuts the step (Vector's operator= takes no NaN).
+                      for (auto &v : cell_force)
+                        v = std::numeric_limits<double>::quiet_NaN();
                       continue;
                     }
+                  const Tensor<2, 2> AE = contract(A, E);
                   for (unsigned int i = 0; i < n; ++i)
-                    cell_force[i] += w * (scalar_product(P_band, T[i]) -
-                                          scalar_product(P, G[i]));
+                    cell_force[i] += w * (scalar_product(P, Delta[i]) +
+                                          scalar_product(AE, T[i]));
                   if (tangent == nullptr)
                     continue;
+                  // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
+                  // latter D_E A(f) : G_j (second derivatives commute),
+                  // by central differences along E.
+                  Tensor<4, 2>  dA_E;
+                  const double  size = E.norm();
+                  if (size > 0)
+                    {
+                      const double h = 1e-5 / size;
+                      Tensor<2, 2> P_other;
+                      Tensor<4, 2> A_plus, A_minus;
+                      if (stress(state, f + h * E, P_other, A_plus) &&
+                          stress(state, f - h * E, P_other, A_minus))
+                        dA_E = (A_plus - A_minus) / (2 * h);
+                    }
                   for (unsigned int j = 0; j < n; ++j)
                     {
-                      AT[j] = contract(A_band, T[j]);
+                      AT[j] = contract(A, Delta[j]) + contract(dA_E, G[j]);
                       AG[j] = contract(A, G[j]);
                     }
                   for (unsigned int i = 0; i < n; ++i)
                     for (unsigned int j = 0; j < n; ++j)
-                      cell_matrix(i, j) += w * (scalar_product(T[i], AT[j]) -
-                                                scalar_product(G[i], AG[j]));
+                      cell_matrix(i, j) += w * (scalar_product(AG[j], Delta[i]) +
+                                                scalar_product(AT[j], T[i]));
                 }
             }
           if (tangent != nullptr)

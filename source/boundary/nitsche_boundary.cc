@@ -253,7 +253,8 @@ namespace bsmpm
                           A))
                 {
                   // An inverted boundary: Newton cuts the step.
-                  cell_force = std::numeric_limits<double>::quiet_NaN();
+                  for (auto &v : cell_force)
+                    v = std::numeric_limits<double>::quiet_NaN();
                   continue;
                 }
               // The nominal traction P n on the curve of the step's start.
