@@ -380,13 +380,13 @@ namespace bsmpm
   std::vector<double>
   BoundaryCurve::state_at(const unsigned int segment, const double u) const
   {
-    using Property               = MaterialPoints::Property;
-    const auto         range     = spline->segment_parameters(segment);
-    const unsigned int k1        = (segment + 1) % positions.size();
-    const double       f         = (u - range[0]) / (range[1] - range[0]);
-    const auto        &a         = states[segment];
-    const auto        &b         = states[k1];
-    const auto         at        = [&](const unsigned int k) {
+    using Property           = MaterialPoints::Property;
+    const auto         range = spline->segment_parameters(segment);
+    const unsigned int k1    = (segment + 1) % positions.size();
+    const double       f     = (u - range[0]) / (range[1] - range[0]);
+    const auto        &a     = states[segment];
+    const auto        &b     = states[k1];
+    const auto         at    = [&](const unsigned int k) {
       return (1 - f) * a[k] + f * b[k];
     };
     std::vector<double> props(Property::n_properties_inelastic, 0.);

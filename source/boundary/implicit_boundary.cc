@@ -418,12 +418,12 @@ namespace bsmpm
           cell->get_dof_indices(dof_indices);
           for (unsigned int i = 0; i < n; ++i)
             d[i] = increment(dof_indices[i]);
-          const bool roller  = condition->holds_normal_component_only();
-          const bool imposes = condition->prescribes_displacement();
-          const BSplineCurve &spline = *curve.spline;
-          const double        du     = piece.u_end - piece.u_begin;
-          cell_matrix                = 0;
-          cell_force                 = 0;
+          const bool          roller = condition->holds_normal_component_only();
+          const bool          imposes = condition->prescribes_displacement();
+          const BSplineCurve &spline  = *curve.spline;
+          const double        du      = piece.u_end - piece.u_begin;
+          cell_matrix                 = 0;
+          cell_force                  = 0;
 
           for (unsigned int q = 0; q < along.size(); ++q)
             {
@@ -476,12 +476,11 @@ namespace bsmpm
                   for (unsigned int i = 0; i < n; ++i)
                     {
                       G[i]     = kernel.shape_gradient(i, st);
-                      Delta[i] = roller ?
-                                   dD * (trace[i] * normal) * nn -
-                                     (1 - D) * (trace_dt[i] * normal) *
-                                       outer_product(normal, tangent_) :
-                                   dD * outer_product(trace[i], normal);
-                      T[i] = G[i] + Delta[i];
+                      Delta[i] = roller ? dD * (trace[i] * normal) * nn -
+                                            (1 - D) * (trace_dt[i] * normal) *
+                                              outer_product(normal, tangent_) :
+                                          dD * outer_product(trace[i], normal);
+                      T[i]     = G[i] + Delta[i];
                       f += d[i] * G[i];
                       E += d[i] * Delta[i];
                     }
@@ -512,8 +511,8 @@ namespace bsmpm
                   // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
                   // latter D_E A(f) : G_j (second derivatives commute),
                   // by central differences along E.
-                  Tensor<4, 2>  dA_E;
-                  const double  size = E.norm();
+                  Tensor<4, 2> dA_E;
+                  const double size = E.norm();
                   if (size > 0)
                     {
                       const double h = 1e-5 / size;
@@ -530,8 +529,9 @@ namespace bsmpm
                     }
                   for (unsigned int i = 0; i < n; ++i)
                     for (unsigned int j = 0; j < n; ++j)
-                      cell_matrix(i, j) += w * (scalar_product(AG[j], Delta[i]) +
-                                                scalar_product(AT[j], T[i]));
+                      cell_matrix(i, j) +=
+                        w * (scalar_product(AG[j], Delta[i]) +
+                             scalar_product(AT[j], T[i]));
                 }
             }
           if (tangent != nullptr)

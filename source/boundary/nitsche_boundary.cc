@@ -232,7 +232,7 @@ namespace bsmpm
               const Tensor<1, 2> nv = spline.outward_normal(u);
               const double       ds =
                 spline.derivative(u).norm() * du * gauss.weight(q);
-              const Point<2> st = grid.local_coordinates(x, piece.cell);
+              const Point<2> st      = grid.local_coordinates(x, piece.cell);
               const auto     project = [&](const Tensor<1, 2> &v) {
                 return roller ? Tensor<1, 2>((v * nv) * nv) : v;
               };

@@ -424,9 +424,9 @@ namespace bsmpm
     Tensor<2, 3>                  D;
     for (unsigned int r = 0; r < 3; ++r)
       for (unsigned int c = 0; c < 3; ++c)
-        D[r][c] = response.tangent[index[r][0]][index[r][1]][index[c][0]]
-                                  [index[c][1]] *
-                  (c == 2 ? 2. : 1.);
+        D[r][c] =
+          response.tangent[index[r][0]][index[r][1]][index[c][0]][index[c][1]] *
+          (c == 2 ? 2. : 1.);
     const Tensor<2, 3> DL = D * log_derivative;
     const Tensor<2, 2> tau({{response.stress[0][0], response.stress[0][1]},
                             {response.stress[0][1], response.stress[1][1]}});
@@ -445,9 +445,8 @@ namespace bsmpm
           const Tensor<2, 2> lb = df * transpose(f_inv_T) * b;
           const Tensor<1, 3> dtau =
             DL * Tensor<1, 3>({lb[0][0], lb[1][1], (lb[0][1] + lb[1][0]) / 2});
-          const Tensor<2, 2> dP =
-            c * (as_tensor(dtau) * f_inv_T -
-                 tau * f_inv_T * transpose(df) * f_inv_T);
+          const Tensor<2, 2> dP = c * (as_tensor(dtau) * f_inv_T -
+                                       tau * f_inv_T * transpose(df) * f_inv_T);
           for (unsigned int i = 0; i < 2; ++i)
             for (unsigned int j = 0; j < 2; ++j)
               A[i][j][k][l] = dP[i][j];
@@ -513,7 +512,10 @@ namespace bsmpm
       if (!(kin.det_f > 0))
         {
           // An inverted point: no finite residual, so Newton cuts the step.
-          f = std::numeric_limits<double>::quiet_NaN();
+          // (Element by element: in Debug, Vector's operator= refuses a
+          // NaN.)
+          for (auto &v : f)
+            v = std::numeric_limits<double>::quiet_NaN();
           return false;
         }
       const auto response = model.update(state);

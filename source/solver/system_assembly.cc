@@ -538,8 +538,11 @@ namespace bsmpm
     if (finite_strain)
       {
         support_force.reinit(newton_residual);
-        add_finite_strain_support_terms(
-          update, increment, system_constraints, &tangent_matrix, support_force);
+        add_finite_strain_support_terms(update,
+                                        increment,
+                                        system_constraints,
+                                        &tangent_matrix,
+                                        support_force);
         support_force.compress(VectorOperation::add);
         // The share of the curves whose reactions are asked for, without
         // constraints (support_forces()).

@@ -219,10 +219,10 @@ def main():
             ("stretch", "pressure", "per cell 2", 5),
             ("stretch", "pressure", "per cell 3", 4),
             ("compression", "implicit boundary", "per cell 2", 10),
-            ("compression", "implicit boundary", "per cell 3", 1),
+            ("compression", "implicit boundary", "per cell 3", 5),
             ("stretch", "implicit boundary", "per cell 2", 5),
             ("shear", "implicit boundary", "per cell 2", 5),
-            ("shear", "implicit boundary", "per cell 3", 1),
+            ("shear", "implicit boundary", "per cell 3", 5),
             ("compression", "nitsche", "per cell 3", 5),
             ("stretch", "nitsche", "per cell 2", 1),
             ("shear", "nitsche", "per cell 2", 10)]

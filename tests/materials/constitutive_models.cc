@@ -1085,11 +1085,12 @@ namespace
                   update.first_piola_stress(props, minus, P_minus, A_other);
                   for (unsigned int i = 0; i < 2; ++i)
                     for (unsigned int j = 0; j < 2; ++j)
-                      worst_A = std::max(
-                        worst_A,
-                        std::abs((P_plus[i][j] - P_minus[i][j]) / (2 * e) -
-                                 A[i][j][k][l]) /
-                          largest);
+                      worst_A =
+                        std::max(worst_A,
+                                 std::abs((P_plus[i][j] - P_minus[i][j]) /
+                                            (2 * e) -
+                                          A[i][j][k][l]) /
+                                   largest);
                 }
             FullMatrix<double>                         K(8, 8);
             Vector<double>                             force(8);
@@ -1099,9 +1100,10 @@ namespace
             for (unsigned int a = 0; a < 8; ++a)
               worst_force =
                 std::max(worst_force,
-                         std::abs(force[a] - q[Property::volume] *
-                                               scalar_product(
-                                                 P, kernel.shape_gradient(a, st))) /
+                         std::abs(
+                           force[a] -
+                           q[Property::volume] *
+                             scalar_product(P, kernel.shape_gradient(a, st))) /
                            force.linfty_norm());
           }
         deallog << "finite strain, " << name

@@ -190,8 +190,8 @@ namespace bsmpm
      * as of the last load step: the state of the boundary that finite
      * strain's support terms load further (state_at()). */
     std::vector<MaterialPoints::TrackedState> states;
-    std::unique_ptr<BSplineCurve> spline;
-    std::vector<CurvePiece>       pieces;
+    std::unique_ptr<BSplineCurve>             spline;
+    std::vector<CurvePiece>                   pieces;
 
     unsigned int
     n_segments() const

@@ -106,8 +106,8 @@ namespace bsmpm
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs,
              const BoundaryCurve                              *only = nullptr,
-             const std::vector<CellMoments> *moments       = nullptr,
-             const bool                      finite_strain = false);
+             const std::vector<CellMoments> *moments                = nullptr,
+             const bool                      finite_strain          = false);
 
     /**
      * Finite strain, consistent formulation (doc/finite-strain.md,
