@@ -114,16 +114,18 @@ namespace bsmpm
      * "Supports in finite strain"): the band's share of the internal force
      * at the step's increment @p increment (with ghost values), for DoF i
      *
-     *   f_i = sum_band w [P(f_b) : (G_i + Delta_i) - P(f) : G_i],
+     *   f_i = sum_band w [P(f) : Delta_i + (A(f) : E) : (G_i + Delta_i)],
      *
-     * f = 1 + grad w the grid's relative deformation gradient, f_b = f +
-     * Delta(d) - Delta_g that of u = w - (1 - D) P (w(x_b) - g), G_i the
-     * gradient of shape function i and Delta_i its band correction, P the
-     * first Piola stress of @p stress with the curve's state at the band
-     * point; added to @p internal_force, and its derivative to @p tangent
-     * unless nullptr, through @p constraints. With the linear P = sigma_n
-     * + C eps these are the terms of assemble(). The prescribed data are
-     * those of the last assemble(). With @p only, that curve's supports
+     * f = 1 + grad w the grid's relative deformation gradient, E =
+     * Delta(d) - Delta_g the band's mismatch of u = w - (1 - D) P (w(x_b) -
+     * g), G_i the gradient of shape function i and Delta_i its band
+     * correction, P the first Piola stress of @p stress with the curve's
+     * state at the band point and A = dP/df: the band's stress P(f + E)
+     * linearised about f. Added to @p internal_force, its derivative to
+     * @p tangent unless nullptr, through @p constraints. With the linear
+     * P = sigma_n + C eps these are the terms of assemble(). The prescribed
+     * data are those of the last assemble(). With @p only, that curve's
+     * supports
      * alone. Nothing for the frame and paper formulations.
      */
     void
