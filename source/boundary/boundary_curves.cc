@@ -377,6 +377,30 @@ namespace bsmpm
 
 
 
+  std::vector<double>
+  BoundaryCurve::state_at(const unsigned int segment, const double u) const
+  {
+    using Property           = MaterialPoints::Property;
+    const auto         range = spline->segment_parameters(segment);
+    const unsigned int k1    = (segment + 1) % positions.size();
+    const double       f     = (u - range[0]) / (range[1] - range[0]);
+    const auto        &a     = states[segment];
+    const auto        &b     = states[k1];
+    const auto         at    = [&](const unsigned int k) {
+      return (1 - f) * a[k] + f * b[k];
+    };
+    std::vector<double> props(Property::n_properties_inelastic, 0.);
+    props[Property::volume] = 1.;
+    for (unsigned int k = 0; k < 4; ++k)
+      props[Property::elastic_strain + k] = at(k);
+    props[Property::plastic_strain] = at(4);
+    props[Property::det_F]          = at(5);
+    props[Property::weight]         = 1.;
+    return props;
+  }
+
+
+
   const CurveCondition *
   BoundaryCurve::condition_of_segment(const unsigned int k) const
   {
@@ -846,9 +870,10 @@ namespace bsmpm
   BoundaryCurves::update(const MaterialPoints &points,
                          const BackgroundGrid &grid)
   {
-    std::vector<Point<2>> positions;
-    std::vector<Voigt>    stresses;
-    points.tracked_states(positions, stresses);
+    std::vector<Point<2>>                     positions;
+    std::vector<Voigt>                        stresses;
+    std::vector<MaterialPoints::TrackedState> states;
+    points.tracked_states(positions, stresses, &states);
     const UniformGrid uniform{grid.lower_left(),
                               grid.cell_size(),
                               {{grid.n_cells(0), grid.n_cells(1)}}};
@@ -856,10 +881,12 @@ namespace bsmpm
       {
         curve.positions.clear();
         curve.stresses.clear();
+        curve.states.clear();
         for (const unsigned int slot : curve.tracked_slots)
           {
             curve.positions.push_back(positions[slot]);
             curve.stresses.push_back(stresses[slot]);
+            curve.states.push_back(states[slot]);
           }
         rebuild(curve);
         try

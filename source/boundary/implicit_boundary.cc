@@ -8,6 +8,7 @@
 #include <bsmpm/boundary/implicit_boundary.h>
 
 #include <cmath>
+#include <limits>
 
 namespace bsmpm
 {
@@ -130,7 +131,8 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix                   &matrix,
     TrilinosWrappers::MPI::Vector                    &rhs,
     const BoundaryCurve                              *only,
-    const std::vector<CellMoments>                   *moments)
+    const std::vector<CellMoments>                   *moments,
+    const bool                                        finite_strain)
   {
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     // Every process holds every curve: the check is collective.
@@ -253,6 +255,10 @@ namespace bsmpm
                   const Point<2> x   = c + phi * normal;
                   const Point<2> st  = grid.local_coordinates(x, piece.cell);
                   points.push_back({x, D, w, cell->active_cell_index(), st});
+                  // Finite strain: the consistent band's terms come per
+                  // Newton iteration (add_finite_strain_terms()).
+                  if (finite_strain && formulation == Formulation::consistent)
+                    continue;
 
                   Voigt strain_a;
                   if (prescribed)
@@ -367,6 +373,175 @@ namespace bsmpm
             cell_matrix, cell_rhs, dof_indices, matrix, rhs);
         }
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
+  }
+
+
+
+  void
+  ImplicitBoundary::add_finite_strain_terms(
+    const BoundaryCurves                             &curves,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const SupportStress                              &stress,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   *tangent,
+    TrilinosWrappers::MPI::Vector                    &internal_force,
+    const BoundaryCurve                              *only) const
+  {
+    if (formulation != Formulation::consistent)
+      return;
+    constexpr unsigned int n     = Q1CellKernel::dofs_per_cell;
+    const double           delta = band_width(grid);
+    const QGauss<1>        along(points_along), across(points_across);
+
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_force(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    Q1CellKernel::LocalVector            d;
+    std::array<Tensor<1, 2>, n>          trace, trace_dt;
+    // Per shape function: its gradient G, its band correction Delta, the
+    // band's gradient G + Delta, and A : (G + Delta), A : G.
+    std::array<Tensor<2, 2>, n> G, Delta, T, AT, AG;
+
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        {
+          const CurveCondition *condition =
+            curve.condition_of_segment(piece.segment);
+          if (!is_ibm_support(curve, condition) ||
+              (only != nullptr && &curve != only))
+            continue;
+          const auto cell = grid.locally_owned_cell(piece.cell);
+          if (cell == grid.dof_handler().end())
+            continue;
+          cell->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < n; ++i)
+            d[i] = increment(dof_indices[i]);
+          const bool          roller = condition->holds_normal_component_only();
+          const bool          imposes = condition->prescribes_displacement();
+          const BSplineCurve &spline  = *curve.spline;
+          const double        du      = piece.u_end - piece.u_begin;
+          cell_matrix                 = 0;
+          cell_force                  = 0;
+
+          for (unsigned int q = 0; q < along.size(); ++q)
+            {
+              // The geometry and prescribed data of assemble().
+              const double       u = piece.u_begin + along.point(q)[0] * du;
+              const Point<2>     c = spline.value(u);
+              const Tensor<1, 2> outward = spline.outward_normal(u);
+              const Tensor<1, 2> normal  = -outward;
+              const Tensor<1, 2> tangent_({-normal[1], normal[0]});
+              const double       ds =
+                spline.derivative(u).norm() * du * along.weight(q);
+              const Tensor<2, 2> nn   = outer_product(normal, normal);
+              const Point<2>     st_c = grid.local_coordinates(c, piece.cell);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  trace[i]    = kernel.shape_value(i, st_c);
+                  trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent_;
+                }
+              Tensor<1, 2> g, dg_dt;
+              if (imposes)
+                {
+                  const double   tau = 1e-6 * du;
+                  const Point<2> a   = spline.value(u - tau),
+                                 b   = spline.value(u + tau);
+                  g                  = last_increment_factor *
+                      prescribed_value(*condition, last_exact, c, outward);
+                  dg_dt =
+                    last_increment_factor *
+                    (prescribed_value(*condition, last_exact, b, outward) -
+                     prescribed_value(*condition, last_exact, a, outward)) /
+                    ((b - a) * tangent_);
+                }
+              // The state of the boundary as of the step's start.
+              const std::vector<double> props =
+                curve.state_at(piece.segment, u);
+              const ArrayView<const double> state(props.data(), props.size());
+
+              for (unsigned int r = 0; r < across.size(); ++r)
+                {
+                  const double   phi = delta * across.point(r)[0];
+                  const double   w   = ds * delta * across.weight(r);
+                  const double   D   = d_function(phi, delta);
+                  const double   dD  = d_function_derivative(phi, delta);
+                  const Point<2> x   = c + phi * normal;
+                  const Point<2> st  = grid.local_coordinates(x, piece.cell);
+                  // The band corrections of assemble() as full gradients
+                  // (its strains are their symmetric parts), and the
+                  // band's mismatch E = Delta(d) - Delta_g.
+                  Tensor<2, 2> f = unit_symmetric_tensor<2>(), E;
+                  for (unsigned int i = 0; i < n; ++i)
+                    {
+                      G[i]     = kernel.shape_gradient(i, st);
+                      Delta[i] = roller ? dD * (trace[i] * normal) * nn -
+                                            (1 - D) * (trace_dt[i] * normal) *
+                                              outer_product(normal, tangent_) :
+                                          dD * outer_product(trace[i], normal);
+                      T[i]     = G[i] + Delta[i];
+                      f += d[i] * G[i];
+                      E += d[i] * Delta[i];
+                    }
+                  if (imposes)
+                    E -= roller ? dD * outer_product(g, normal) -
+                                    (1 - D) * outer_product(dg_dt, tangent_) :
+                                  dD * outer_product(g, normal);
+                  // P(f + E) linearised about the grid's f: E is the
+                  // constraint's, of order (w(x_b) - g) / delta, and would
+                  // invert the band long before Newton has met the support
+                  // (doc/finite-strain.md, "Supports in finite strain").
+                  Tensor<2, 2> P;
+                  Tensor<4, 2> A;
+                  if (!stress(state, f, P, A))
+                    {
+                      // An inverted point: no finite residual, so Newton
+                      // cuts the step (Vector's operator= takes no NaN).
+                      for (auto &v : cell_force)
+                        v = std::numeric_limits<double>::quiet_NaN();
+                      continue;
+                    }
+                  const Tensor<2, 2> AE = contract(A, E);
+                  for (unsigned int i = 0; i < n; ++i)
+                    cell_force[i] += w * (scalar_product(P, Delta[i]) +
+                                          scalar_product(AE, T[i]));
+                  if (tangent == nullptr)
+                    continue;
+                  // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
+                  // latter D_E A(f) : G_j (second derivatives commute),
+                  // by central differences along E.
+                  Tensor<4, 2> dA_E;
+                  const double size = E.norm();
+                  if (size > 0)
+                    {
+                      const double h = 1e-5 / size;
+                      Tensor<2, 2> P_other;
+                      Tensor<4, 2> A_plus, A_minus;
+                      if (stress(state, f + h * E, P_other, A_plus) &&
+                          stress(state, f - h * E, P_other, A_minus))
+                        dA_E = (A_plus - A_minus) / (2 * h);
+                    }
+                  for (unsigned int j = 0; j < n; ++j)
+                    {
+                      AT[j] = contract(A, Delta[j]) + contract(dA_E, G[j]);
+                      AG[j] = contract(A, G[j]);
+                    }
+                  for (unsigned int i = 0; i < n; ++i)
+                    for (unsigned int j = 0; j < n; ++j)
+                      cell_matrix(i, j) +=
+                        w * (scalar_product(AG[j], Delta[i]) +
+                             scalar_product(AT[j], T[i]));
+                }
+            }
+          if (tangent != nullptr)
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_force, dof_indices, *tangent, internal_force);
+          else
+            constraints.distribute_local_to_global(cell_force,
+                                                   dof_indices,
+                                                   internal_force);
+        }
   }
 
 

@@ -4,6 +4,7 @@
 #include <bsmpm/boundary/nitsche_boundary.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace bsmpm
 {
@@ -71,7 +72,8 @@ namespace bsmpm
                             TrilinosWrappers::SparseMatrix  &matrix,
                             TrilinosWrappers::MPI::Vector   &rhs,
                             const BoundaryCurve             *only,
-                            const std::vector<CellMoments>  *moments) const
+                            const std::vector<CellMoments>  *moments,
+                            const bool finite_strain) const
   {
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
@@ -137,15 +139,19 @@ namespace bsmpm
                                i, st, moments != nullptr ? centroid : st),
                              nv);
                 }
+              // Finite strain: the consistency term and the reaction come
+              // per Newton iteration (add_finite_strain_terms()).
+              const double consistency = finite_strain ? 0. : 1.;
               for (unsigned int i = 0; i < n; ++i)
                 for (unsigned int j = 0; j < n; ++j)
                   cell_matrix(i, j) +=
-                    ds * (-project(stress_n[j]) * value[i] -
+                    ds * (-consistency * project(stress_n[j]) * value[i] -
                           project(stress_n[i]) * value[j] +
                           beta * project(value[i]) * value[j]);
 
               // Reaction of the previous steps.
               const Tensor<1, 2> reaction =
+                consistency *
                 project(traction(curve.stress_at(piece.segment, u), nv));
 
               // The prescribed increment; for a normal displacement
@@ -173,5 +179,104 @@ namespace bsmpm
             cell_matrix, cell_rhs, dof_indices, matrix, rhs);
         }
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
+  }
+
+
+
+  void
+  NitscheBoundary::add_finite_strain_terms(
+    const BoundaryCurves                             &curves,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const SupportStress                              &stress,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   *tangent,
+    TrilinosWrappers::MPI::Vector                    &internal_force,
+    const BoundaryCurve                              *only) const
+  {
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    const QGauss<1>        gauss(n_gauss_points);
+
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_force(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    Q1CellKernel::LocalVector            d;
+    std::array<Tensor<1, 2>, n>          value;
+    std::array<Tensor<2, 2>, n>          G;
+
+    for (const auto &curve : curves.get_curves())
+      for (const auto &piece : curve.pieces)
+        {
+          const CurveCondition *condition =
+            curve.condition_of_segment(piece.segment);
+          if (!is_nitsche_support(curve, condition) ||
+              (only != nullptr && &curve != only))
+            continue;
+          const auto cell = grid.locally_owned_cell(piece.cell);
+          if (cell == grid.dof_handler().end())
+            continue;
+          cell->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < n; ++i)
+            d[i] = increment(dof_indices[i]);
+          const bool          roller = condition->holds_normal_component_only();
+          const BSplineCurve &spline = *curve.spline;
+          const double        du     = piece.u_end - piece.u_begin;
+          cell_matrix                = 0;
+          cell_force                 = 0;
+
+          for (unsigned int q = 0; q < gauss.size(); ++q)
+            {
+              const double       u  = piece.u_begin + gauss.point(q)[0] * du;
+              const Point<2>     x  = spline.value(u);
+              const Tensor<1, 2> nv = spline.outward_normal(u);
+              const double       ds =
+                spline.derivative(u).norm() * du * gauss.weight(q);
+              const Point<2> st      = grid.local_coordinates(x, piece.cell);
+              const auto     project = [&](const Tensor<1, 2> &v) {
+                return roller ? Tensor<1, 2>((v * nv) * nv) : v;
+              };
+              Tensor<2, 2> f = unit_symmetric_tensor<2>();
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  value[i] = kernel.shape_value(i, st);
+                  G[i]     = kernel.shape_gradient(i, st);
+                  f += d[i] * G[i];
+                }
+              const std::vector<double> props =
+                curve.state_at(piece.segment, u);
+              Tensor<2, 2> P;
+              Tensor<4, 2> A;
+              if (!stress(ArrayView<const double>(props.data(), props.size()),
+                          f,
+                          P,
+                          A))
+                {
+                  // An inverted boundary: Newton cuts the step.
+                  for (auto &v : cell_force)
+                    v = std::numeric_limits<double>::quiet_NaN();
+                  continue;
+                }
+              // The nominal traction P n on the curve of the step's start.
+              const Tensor<1, 2> traction_n = project(P * nv);
+              for (unsigned int i = 0; i < n; ++i)
+                cell_force[i] -= ds * (value[i] * traction_n);
+              if (tangent == nullptr)
+                continue;
+              for (unsigned int j = 0; j < n; ++j)
+                {
+                  const Tensor<1, 2> dt = project(contract(A, G[j]) * nv);
+                  for (unsigned int i = 0; i < n; ++i)
+                    cell_matrix(i, j) -= ds * (value[i] * dt);
+                }
+            }
+          if (tangent != nullptr)
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_force, dof_indices, *tangent, internal_force);
+          else
+            constraints.distribute_local_to_global(cell_force,
+                                                   dof_indices,
+                                                   internal_force);
+        }
   }
 } // namespace bsmpm

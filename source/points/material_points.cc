@@ -476,20 +476,31 @@ namespace bsmpm
                                     const ArrayView<const double> properties)
   {
     const unsigned int slot = tracked_slot(id);
-    if (slot != numbers::invalid_unsigned_int)
-      tracked_local.push_back({{double(slot),
-                                x[0],
-                                x[1],
-                                properties[Property::stress],
-                                properties[Property::stress + 1],
-                                properties[Property::stress + 2]}});
+    if (slot == numbers::invalid_unsigned_int)
+      return;
+    std::array<double, 12> state{{double(slot),
+                                  x[0],
+                                  x[1],
+                                  properties[Property::stress],
+                                  properties[Property::stress + 1],
+                                  properties[Property::stress + 2]}};
+    state[11] = 1.; // det F
+    if (properties.size() >= Property::n_properties_inelastic)
+      {
+        for (unsigned int k = 0; k < 4; ++k)
+          state[6 + k] = properties[Property::elastic_strain + k];
+        state[10] = properties[Property::plastic_strain];
+        state[11] = properties[Property::det_F];
+      }
+    tracked_local.push_back(state);
   }
 
 
 
   void
-  MaterialPoints::tracked_states(std::vector<Point<2>> &positions,
-                                 std::vector<Voigt>    &stresses) const
+  MaterialPoints::tracked_states(std::vector<Point<2>>     &positions,
+                                 std::vector<Voigt>        &stresses,
+                                 std::vector<TrackedState> *states) const
   {
     const auto all =
       Utilities::MPI::all_gather(grid.mpi_communicator(), tracked_local);
@@ -498,6 +509,8 @@ namespace bsmpm
       n += part.size();
     positions.resize(n);
     stresses.resize(n);
+    if (states != nullptr)
+      states->resize(n);
     for (const auto &part : all)
       for (const auto &state : part)
         {
@@ -506,6 +519,8 @@ namespace bsmpm
                       ExcMessage("A tracked boundary point was lost."));
           positions[slot] = Point<2>(state[1], state[2]);
           stresses[slot]  = Voigt({state[3], state[4], state[5]});
+          if (states != nullptr)
+            std::copy(state.begin() + 6, state.end(), (*states)[slot].begin());
         }
   }
 

@@ -394,6 +394,68 @@ namespace bsmpm
 
 
 
+  bool
+  ConstitutiveUpdate::first_piola_stress(const ArrayView<const double> &props,
+                                         const Tensor<2, 2>            &f,
+                                         Tensor<2, 2>                  &P,
+                                         Tensor<4, 2>                  &A) const
+  {
+    const double det_f = determinant(f);
+    if (!(det_f > 0))
+      return false;
+    // The trial state of finite_strain_trial(): b_e^tr = f b_e,n f^T.
+    const SymmetricTensor<2, 3> eps_n = stored_elastic_strain(props);
+    Tensor<1, 3>                b_n, log_b;
+    Tensor<2, 3>                log_derivative;
+    in_plane_function(2 * in_plane(eps_n), exp_of, exp_of, b_n, nullptr);
+    const Tensor<1, 3> b_trial = push_forward(f, b_n);
+    in_plane_function(b_trial, log_of, inverse_of, log_b, &log_derivative);
+    ConstitutiveState state;
+    state.elastic_strain[0][0]      = log_b[0] / 2;
+    state.elastic_strain[1][1]      = log_b[1] / 2;
+    state.elastic_strain[0][1]      = log_b[2] / 2;
+    state.elastic_strain[2][2]      = eps_n[2][2];
+    state.equivalent_plastic_strain = props[Property::plastic_strain];
+    const auto response             = model.update(state);
+
+    // d tau / d eps^tr on (xx, yy, xy), the xy column counted twice, as in
+    // cell_system().
+    static constexpr unsigned int index[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+    Tensor<2, 3>                  D;
+    for (unsigned int r = 0; r < 3; ++r)
+      for (unsigned int c = 0; c < 3; ++c)
+        D[r][c] =
+          response.tangent[index[r][0]][index[r][1]][index[c][0]][index[c][1]] *
+          (c == 2 ? 2. : 1.);
+    const Tensor<2, 3> DL = D * log_derivative;
+    const Tensor<2, 2> tau({{response.stress[0][0], response.stress[0][1]},
+                            {response.stress[0][1], response.stress[1][1]}});
+    const Tensor<2, 2> b       = as_tensor(b_trial);
+    const Tensor<2, 2> f_inv_T = transpose(invert(f));
+    const double       c       = 1. / props[Property::det_F];
+    P                          = c * tau * f_inv_T;
+    // A change df gives dl = df f^-1, delta b^tr = 2 sym(dl b^tr),
+    // delta eps^tr = L : sym(dl b^tr), delta tau = D : delta eps^tr and
+    // delta P = (delta tau f^-T - tau f^-T df^T f^-T) / J_n.
+    for (unsigned int k = 0; k < 2; ++k)
+      for (unsigned int l = 0; l < 2; ++l)
+        {
+          Tensor<2, 2> df;
+          df[k][l]              = 1.;
+          const Tensor<2, 2> lb = df * transpose(f_inv_T) * b;
+          const Tensor<1, 3> dtau =
+            DL * Tensor<1, 3>({lb[0][0], lb[1][1], (lb[0][1] + lb[1][0]) / 2});
+          const Tensor<2, 2> dP = c * (as_tensor(dtau) * f_inv_T -
+                                       tau * f_inv_T * transpose(df) * f_inv_T);
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int j = 0; j < 2; ++j)
+              A[i][j][k][l] = dP[i][j];
+        }
+    return true;
+  }
+
+
+
   unsigned int
   ConstitutiveUpdate::cell_system(
     const Q1CellKernel                  &kernel,
@@ -467,7 +529,10 @@ namespace bsmpm
       if (!(kin.det_f > 0))
         {
           // An inverted point: no finite residual, so Newton cuts the step.
-          f = std::numeric_limits<double>::quiet_NaN();
+          // (Element by element: in Debug, Vector's operator= refuses a
+          // NaN.)
+          for (auto &v : f)
+            v = std::numeric_limits<double>::quiet_NaN();
           return false;
         }
       const auto response = model.update(state);

@@ -109,12 +109,19 @@ namespace bsmpm
       TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
                                                grid.mpi_communicator());
       // A pressure that follows the boundary within the step (finite
-      // strain) has an unsymmetric load stiffness.
-      const bool symmetric =
+      // strain) has an unsymmetric load stiffness, and so have the
+      // supports' terms in finite strain (the band's mismatch term,
+      // Nitsche's consistency term with dP/df against its symmetric term's
+      // C: doc/finite-strain.md, "Supports in finite strain").
+      const auto &curves = parts.boundary_curves;
+      const bool  symmetric =
         update.symmetric_tangent() && assembly.contact_tangent_symmetric() &&
         !(update.kinematics() ==
             ConstitutiveUpdate::Kinematics::finite_strain &&
-          parts.boundary_curves.has_loads());
+          (curves.has_loads() ||
+           curves.has_supports(
+             BoundaryCurve::DirichletMethod::implicit_boundary) ||
+           curves.has_supports(BoundaryCurve::DirichletMethod::nitsche)));
       const auto report = parts.linear_solver.solve(assembly.tangent(),
                                                     correction,
                                                     assembly.residual(),

@@ -440,7 +440,8 @@ namespace bsmpm
                                          matrix,
                                          rhs,
                                          only,
-                                         assembly_moments);
+                                         assembly_moments,
+                                         finite_strain);
         // The band by cell, for the tangent of nonlinear materials.
         if (only == nullptr && material_from_points)
           {
@@ -464,7 +465,8 @@ namespace bsmpm
                                         matrix,
                                         rhs,
                                         only,
-                                        assembly_moments);
+                                        assembly_moments,
+                                        finite_strain);
       }
   }
 
@@ -487,6 +489,9 @@ namespace bsmpm
     x.compress(VectorOperation::insert);
     support_matrices[c].vmult(force, x);
     force.sadd(-1., 1., support_rhs[c]);
+    // Finite strain: the supports' terms of the last Newton system.
+    if (c < support_finite_strain_forces.size())
+      force -= support_finite_strain_forces[c];
     return force;
   }
 
@@ -536,15 +541,92 @@ namespace bsmpm
                                                       contact_force);
         contact_force.compress(VectorOperation::add);
       }
+    // Finite strain: the supports' terms that depend on the stress of the
+    // step's deformation (doc/finite-strain.md, "Supports in finite
+    // strain"), apart from the points' internal force, whose size stays
+    // the scale of the residual.
+    TrilinosWrappers::MPI::Vector support_force;
+    if (finite_strain)
+      {
+        support_force.reinit(newton_residual);
+        add_finite_strain_support_terms(update,
+                                        increment,
+                                        system_constraints,
+                                        &tangent_matrix,
+                                        support_force);
+        support_force.compress(VectorOperation::add);
+        // The share of the curves whose reactions are asked for, without
+        // constraints (support_forces()).
+        AffineConstraints<double> none;
+        none.close();
+        const auto &curves = parts.curves.get_curves();
+        support_finite_strain_forces.resize(support_curves.size());
+        for (unsigned int c = 0; c < support_curves.size(); ++c)
+          {
+            support_finite_strain_forces[c].reinit(newton_residual);
+            add_finite_strain_support_terms(update,
+                                            increment,
+                                            none,
+                                            nullptr,
+                                            support_finite_strain_forces[c],
+                                            &curves[support_curves[c]]);
+            support_finite_strain_forces[c].compress(VectorOperation::add);
+          }
+      }
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
     internal_force_norm = internal_force.l2_norm();
     newton_residual -= internal_force;
+    if (finite_strain)
+      newton_residual -= support_force;
     if (contact != nullptr)
       newton_residual += contact_force;
     yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
     return newton_residual.l2_norm();
   }
+
+
+  void
+  SystemAssembly::add_finite_strain_support_terms(
+    const ConstitutiveUpdate                         &update,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   *tangent,
+    TrilinosWrappers::MPI::Vector                    &force,
+    const BoundaryCurve                              *only) const
+  {
+    const SupportStress stress = [&update](const ArrayView<const double> &props,
+                                           const Tensor<2, 2>            &f,
+                                           Tensor<2, 2>                  &P,
+                                           Tensor<4, 2>                  &A) {
+      return update.first_piola_stress(props, f, P, A);
+    };
+    const auto uses = [&](const BoundaryCurve::DirichletMethod method) {
+      return only != nullptr ? only->dirichlet_method == method :
+                               parts.curves.has_supports(method);
+    };
+    if (uses(BoundaryCurve::DirichletMethod::implicit_boundary))
+      parts.implicit_boundary.add_finite_strain_terms(parts.curves,
+                                                      parts.grid,
+                                                      *cell_kernel,
+                                                      increment,
+                                                      stress,
+                                                      constraints,
+                                                      tangent,
+                                                      force,
+                                                      only);
+    if (uses(BoundaryCurve::DirichletMethod::nitsche))
+      parts.nitsche_boundary.add_finite_strain_terms(parts.curves,
+                                                     parts.grid,
+                                                     *cell_kernel,
+                                                     increment,
+                                                     stress,
+                                                     constraints,
+                                                     tangent,
+                                                     force,
+                                                     only);
+  }
+
 
 
   std::vector<double>

@@ -1040,6 +1040,79 @@ namespace
                     << ", symmetric: " << (asymmetry <= 1e-10 ? "yes" : "no")
                     << std::endl;
           }
+
+    // The supports' stress in finite strain (first_piola_stress(): what
+    // the band and Nitsche's terms load): A = dP/df against central
+    // differences of P, and P : grad N_a times the weight against the
+    // internal force that cell_system() gives one point in the same state.
+    for (const auto &[name, model] : models)
+      {
+        ConstitutiveUpdate update(*model, false, Kinematics::finite_strain);
+        double             worst_A = 0, worst_force = 0;
+        for (unsigned int c = 0; c < 20; ++c)
+          {
+            std::vector<double> q(Property::n_properties_inelastic);
+            q[Property::volume] = q[Property::weight] = 0.07;
+            for (unsigned int k = 0; k < 4; ++k)
+              q[Property::elastic_strain + k] =
+                (k < 3 ? -4e-3 : 0.) + 1e-3 * (random() - 0.5);
+            q[Property::plastic_strain] = 0.01 * random();
+            q[Property::det_F]          = 0.8 + 0.4 * random();
+            const ArrayView<const double> props(q.data(), q.size());
+            const Point<2>                st(random(), random());
+            Q1CellKernel::LocalVector     d;
+            for (auto &x : d)
+              x = 0.02 * (c % 4 + 1) * (random() - 0.5);
+            const Tensor<2, 2> f =
+              unit_symmetric_tensor<2>() + kernel.gradient(d, st);
+            Tensor<2, 2> P, P_plus, P_minus;
+            Tensor<4, 2> A, A_other;
+            update.first_piola_stress(props, f, P, A);
+            double largest = 0;
+            for (unsigned int i = 0; i < 2; ++i)
+              for (unsigned int j = 0; j < 2; ++j)
+                for (unsigned int k = 0; k < 2; ++k)
+                  for (unsigned int l = 0; l < 2; ++l)
+                    largest = std::max(largest, std::abs(A[i][j][k][l]));
+            const double e = 1e-7;
+            for (unsigned int k = 0; k < 2; ++k)
+              for (unsigned int l = 0; l < 2; ++l)
+                {
+                  Tensor<2, 2> plus = f, minus = f;
+                  plus[k][l] += e;
+                  minus[k][l] -= e;
+                  update.first_piola_stress(props, plus, P_plus, A_other);
+                  update.first_piola_stress(props, minus, P_minus, A_other);
+                  for (unsigned int i = 0; i < 2; ++i)
+                    for (unsigned int j = 0; j < 2; ++j)
+                      worst_A =
+                        std::max(worst_A,
+                                 std::abs((P_plus[i][j] - P_minus[i][j]) /
+                                            (2 * e) -
+                                          A[i][j][k][l]) /
+                                   largest);
+                }
+            FullMatrix<double>                         K(8, 8);
+            Vector<double>                             force(8);
+            std::vector<ConstitutiveUpdate::PointView> one = {{st, props}};
+            update.use_cut_cell_quadrature(nullptr);
+            update.cell_system(kernel, one, d, K, force);
+            for (unsigned int a = 0; a < 8; ++a)
+              worst_force =
+                std::max(worst_force,
+                         std::abs(
+                           force[a] -
+                           q[Property::volume] *
+                             scalar_product(P, kernel.shape_gradient(a, st))) /
+                           force.linfty_norm());
+          }
+        deallog << "finite strain, " << name
+                << ", supports' stress: 20 states, dP/df = central "
+                   "differences (1e-6): "
+                << (worst_A <= 1e-6 ? "yes" : "NO")
+                << ", w P : grad N = the point's internal force (1e-12): "
+                << (worst_force <= 1e-12 ? "yes" : "NO") << std::endl;
+      }
     deallog.pop();
   }
 

@@ -185,9 +185,13 @@ namespace bsmpm
     /** Positions of the points at the start of the run. */
     std::vector<Point<2>> initial_positions;
     /** Stresses of the points (Voigt), as of the last load step. */
-    std::vector<Voigt>            stresses;
-    std::unique_ptr<BSplineCurve> spline;
-    std::vector<CurvePiece>       pieces;
+    std::vector<Voigt> stresses;
+    /** Their constitutive states (elastic strain, plastic strain, det F),
+     * as of the last load step: the state of the boundary that finite
+     * strain's support terms load further (state_at()). */
+    std::vector<MaterialPoints::TrackedState> states;
+    std::unique_ptr<BSplineCurve>             spline;
+    std::vector<CurvePiece>                   pieces;
 
     unsigned int
     n_segments() const
@@ -215,6 +219,15 @@ namespace bsmpm
      * reaction that supports carry from step to step. */
     Voigt
     stress_at(const unsigned int segment, const double u) const;
+
+    /** The constitutive state of the curve at parameter @p u of segment
+     * @p segment, interpolated linearly between the segment's two points,
+     * as the properties of a material point (MaterialPoints::Property:
+     * elastic strain, plastic strain and det F set, volume and weight 1,
+     * the rest zero): what the supports' terms in finite strain load with
+     * the step's deformation (ImplicitBoundary, NitscheBoundary). */
+    std::vector<double>
+    state_at(const unsigned int segment, const double u) const;
 
     /** The condition on segment @p k (the last one given that covers it),
      * or nullptr if the segment is free. */

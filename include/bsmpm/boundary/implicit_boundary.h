@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/support_stress.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/verification/exact_solution.h>
@@ -90,6 +91,11 @@ namespace bsmpm
      * With @p only, the supports of that curve alone (SupportReaction).
      * With a B-bar @p kernel, @p moments (by active_cell_index) give each
      * cell's centroid for the B-bar stress of the band's cross terms.
+     *
+     * With @p finite_strain, the consistent formulation adds nothing here
+     * (but records the band points and the step's prescribed data): its
+     * band terms depend on the stress of the step's deformation and join
+     * the Newton system per iteration (add_finite_strain_terms()).
      */
     void
     assemble(const BoundaryCurves                             &curves,
@@ -103,7 +109,39 @@ namespace bsmpm
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs,
              const BoundaryCurve                              *only = nullptr,
-             const std::vector<CellMoments> *moments                = nullptr);
+             const std::vector<CellMoments> *moments                = nullptr,
+             const bool                      finite_strain          = false);
+
+    /**
+     * Finite strain, consistent formulation (doc/finite-strain.md,
+     * "Supports in finite strain"): the band's share of the internal force
+     * at the step's increment @p increment (with ghost values), for DoF i
+     *
+     *   f_i = sum_band w [P(f) : Delta_i + (A(f) : E) : (G_i + Delta_i)],
+     *
+     * f = 1 + grad w the grid's relative deformation gradient, E =
+     * Delta(d) - Delta_g the band's mismatch of u = w - (1 - D) P (w(x_b) -
+     * g), G_i the gradient of shape function i and Delta_i its band
+     * correction, P the first Piola stress of @p stress with the curve's
+     * state at the band point and A = dP/df: the band's stress P(f + E)
+     * linearised about f. Added to @p internal_force, its derivative to
+     * @p tangent unless nullptr, through @p constraints. With the linear
+     * P = sigma_n + C eps these are the terms of assemble(). The prescribed
+     * data are those of the last assemble(). With @p only, that curve's
+     * supports
+     * alone. Nothing for the frame and paper formulations.
+     */
+    void
+    add_finite_strain_terms(
+      const BoundaryCurves                             &curves,
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const SupportStress                              &stress,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   *tangent,
+      TrilinosWrappers::MPI::Vector                    &internal_force,
+      const BoundaryCurve                              *only = nullptr) const;
 
     /** Whether any IBM support prescribes a displacement (both
      * components: a normal displacement is imposed by the consistent

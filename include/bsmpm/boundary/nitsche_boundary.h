@@ -4,10 +4,12 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/support_stress.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/q1_cell_kernel.h>
@@ -48,6 +50,12 @@ namespace bsmpm
      * increment of this step. With a B-bar @p kernel, @p moments (by
      * active_cell_index) give each cell's centroid: the consistency terms
      * take the B-bar stress, the one the cell's stiffness is made of.
+     *
+     * With @p finite_strain the consistency term - int (sigma(u) n) . v
+     * and the reaction of the previous steps are left out: they depend on
+     * the stress of the step's deformation and join the Newton system per
+     * iteration (add_finite_strain_terms()). The symmetric term, which
+     * multiplies u - g, keeps the elastic stiffness, and the penalty stays.
      */
     void
     assemble(const BoundaryCurves            &curves,
@@ -59,8 +67,36 @@ namespace bsmpm
              const AffineConstraints<double> &constraints,
              TrilinosWrappers::SparseMatrix  &matrix,
              TrilinosWrappers::MPI::Vector   &rhs,
-             const BoundaryCurve             *only    = nullptr,
-             const std::vector<CellMoments>  *moments = nullptr) const;
+             const BoundaryCurve             *only          = nullptr,
+             const std::vector<CellMoments>  *moments       = nullptr,
+             const bool                       finite_strain = false) const;
+
+    /**
+     * Finite strain (doc/finite-strain.md, "Supports in finite strain"):
+     * the consistency term at the step's increment @p increment (with
+     * ghost values) as an internal force, for DoF i
+     *
+     *   f_i = - int N_i . (P(f) n) ds,
+     *
+     * on the curve at the step's start (outward normal n, projected on n
+     * for a roller or a normal displacement), f = 1 + grad w the grid's
+     * relative deformation gradient and P the first Piola stress of
+     * @p stress with the curve's state there (the nominal traction P n
+     * replaces sigma_n n + C eps(u) n); added to @p internal_force, its
+     * derivative to @p tangent unless nullptr, through @p constraints.
+     * With @p only, that curve's supports alone.
+     */
+    void
+    add_finite_strain_terms(
+      const BoundaryCurves                             &curves,
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const SupportStress                              &stress,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   *tangent,
+      TrilinosWrappers::MPI::Vector                    &internal_force,
+      const BoundaryCurve                              *only = nullptr) const;
 
   private:
     double       penalty        = 100;

@@ -235,11 +235,19 @@ namespace bsmpm
       rigid_increments = increments;
     }
 
+    /** The constitutive state of a tracked point that finite strain needs
+     * at the boundary: elastic strain (xx, yy, zz, xy), equivalent plastic
+     * strain and det F (zero strains and det F = 1 for a linear model in
+     * small strain, whose points store no state). */
+    using TrackedState = std::array<double, 6>;
+
     /** Current positions and stresses of the tracked points, in the order
-     * given to track(), on every process. */
+     * given to track(), on every process; with @p states their
+     * constitutive states too. */
     void
-    tracked_states(std::vector<Point<2>> &positions,
-                   std::vector<Voigt>    &stresses) const;
+    tracked_states(std::vector<Point<2>>     &positions,
+                   std::vector<Voigt>        &stresses,
+                   std::vector<TrackedState> *states = nullptr) const;
 
     /** Whether a point with volume lies in @p cell. */
     bool
@@ -362,8 +370,9 @@ namespace bsmpm
     }
     /** Length of the tracked list given to track(). */
     unsigned int n_tracked_slots = 0;
-    /** State of the locally owned tracked points: slot, x, y, and stress. */
-    std::vector<std::array<double, 6>> tracked_local;
+    /** State of the locally owned tracked points: slot, x, y, stress and
+     * the TrackedState. */
+    std::vector<std::array<double, 12>> tracked_local;
   };
 } // namespace bsmpm
 

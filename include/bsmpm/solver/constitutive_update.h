@@ -262,6 +262,23 @@ namespace bsmpm
                 const CellMoments                   *exact_moments = nullptr,
                 const std::vector<SupportBandPoint> *band = nullptr) const;
 
+    /**
+     * Finite strain at a point of a support (ImplicitBoundary's band,
+     * NitscheBoundary's curve points; doc/finite-strain.md, "Supports in
+     * finite strain"): the first Piola stress of the configuration at the
+     * step's start, P = tau f^-T / J_n, of a point with the properties
+     * @p props (elastic and plastic strain, det F as of the step's start)
+     * under the relative deformation gradient @p f (f_zz = 1), and its
+     * derivative @p A, A[i][j][k][l] = d P_ij / d f_kl. The same trial
+     * state and return as the points' (without F-bar). Returns false, P
+     * and A unset, if det f <= 0.
+     */
+    bool
+    first_piola_stress(const ArrayView<const double> &props,
+                       const Tensor<2, 2>            &f,
+                       Tensor<2, 2>                  &P,
+                       Tensor<4, 2>                  &A) const;
+
   private:
     /** How the strain of the points of one cell is computed. */
     struct CellStrain

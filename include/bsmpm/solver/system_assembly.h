@@ -347,6 +347,24 @@ namespace bsmpm
       TrilinosWrappers::MPI::Vector                    &rhs,
       const BoundaryCurve                              *only);
 
+    /** Finite strain: the supports' terms that depend on the stress of
+     * the increment @p increment (ImplicitBoundary and NitscheBoundary::
+     * add_finite_strain_terms()) of all curves, or of @p only, as internal
+     * forces into @p force and, unless nullptr, their derivative into
+     * @p tangent. */
+    void
+    add_finite_strain_support_terms(
+      const ConstitutiveUpdate                         &update,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   *tangent,
+      TrilinosWrappers::MPI::Vector                    &force,
+      const BoundaryCurve                              *only = nullptr) const;
+
+    /** Finite strain: the share of the supports of keep_support_terms()'s
+     * curves in the internal force of the last newton_system(). */
+    std::vector<TrilinosWrappers::MPI::Vector> support_finite_strain_forces;
+
     /** Assembles the supports' terms of keep_support_terms()'s curves. */
     void
     assemble_support_terms(
