@@ -88,6 +88,17 @@ namespace bsmpm
       "multigrid replaces the direct solver (measured crossover on the "
       "plate scene: AMG 1.2x faster at 1250 unknowns, 3.3x "
       "at 74k, doc/benchmarks.md).");
+    prm.declare_entry(
+      "Automatic iteration limit",
+      "50",
+      Patterns::Integer(0),
+      "automatic: a CG (GMRES) solve that needs more than this many "
+      "iterations makes the later solves of the run direct, up to a million "
+      "unknowns (the step table says 'cg slow' once). In two dimensions "
+      "a factorisation costs about 25 multigrid-preconditioned CG "
+      "iterations at 25 k unknowns and 50 at 100 k (measured on plastic "
+      "footings, doc/benchmarks.md): the nearly singular tangents of "
+      "yielding material need hundreds. 0: never.");
     prm.declare_entry("Estimate condition number",
                       "false",
                       Patterns::Bool(),
@@ -142,14 +153,15 @@ namespace bsmpm
                                "least 1e-15 (below round-off CG would "
                                "iterate on into underflow)."));
       }
-    const std::string r      = prm.get("Preconditioner reuse");
-    reuse                    = r == "none" ?
-                                 Reuse::none :
-                                 (r == "aggregates" ? Reuse::aggregates : Reuse::whole);
-    max_iterations           = prm.get_integer("Maximum iterations");
-    automatic_threshold      = prm.get_integer("Automatic threshold");
-    max_refinements          = prm.get_integer("Refinement steps");
-    estimate_condition       = prm.get_bool("Estimate condition number");
+    const std::string r       = prm.get("Preconditioner reuse");
+    reuse                     = r == "none" ?
+                                  Reuse::none :
+                                  (r == "aggregates" ? Reuse::aggregates : Reuse::whole);
+    max_iterations            = prm.get_integer("Maximum iterations");
+    automatic_threshold       = prm.get_integer("Automatic threshold");
+    automatic_iteration_limit = prm.get_integer("Automatic iteration limit");
+    max_refinements           = prm.get_integer("Refinement steps");
+    estimate_condition        = prm.get_bool("Estimate condition number");
     condition_iterations     = prm.get_integer("Condition estimate iterations");
     gmg_data.smoother_degree = prm.get_integer("Multigrid smoother degree");
     gmg_data.coarse_size     = prm.get_integer("Multigrid coarse size");
@@ -603,11 +615,20 @@ namespace bsmpm
         return report;
       }
 
-    const bool use_direct = method == Method::direct ||
-                            (method == Method::automatic &&
-                             (matrix.m() <= automatic_threshold || cg_failed));
+    const bool use_direct =
+      method == Method::direct ||
+      (method == Method::automatic &&
+       (matrix.m() <= automatic_threshold || cg_failed || cg_slow));
     if (use_direct)
-      return solve_direct(matrix, solution, rhs);
+      {
+        Report report = solve_direct(matrix, solution, rhs);
+        if (cg_slow && !cg_slow_said && !cg_failed)
+          {
+            report.method += ", cg slow";
+            cg_slow_said = true;
+          }
+        return report;
+      }
 
     bool geometric = geometric_multigrid(dof_handler);
     // Automatic mode: a matrix of the structure on which the geometric
@@ -631,6 +652,12 @@ namespace bsmpm
           matrix, solution, rhs, dof_handler, symmetric, geometric);
         if (fell_back)
           report.method += ", gmg failed";
+        // A factorisation is the cheaper solve of such tangents (see the
+        // parameter); the same on every process, as the count is.
+        if (method == Method::automatic && automatic_iteration_limit > 0 &&
+            report.iterations > automatic_iteration_limit &&
+            matrix.m() <= 1000000)
+          cg_slow = true;
         return report;
       }
     catch (const IterativeFailure &failure)

@@ -155,6 +155,12 @@ namespace bsmpm
     bool         estimate_condition  = false;
     /** Automatic mode: CG did not converge in an earlier load step. */
     mutable bool cg_failed = false;
+    /** Automatic mode: an iterative solve needed more than
+     * automatic_iteration_limit iterations; cg_slow_said once the step
+     * table has said so. */
+    unsigned int automatic_iteration_limit = 50;
+    mutable bool cg_slow                   = false;
+    mutable bool cg_slow_said              = false;
     /** Automatic mode: the geometric multigrid failed (set-up or
      * iterations) on the matrix object gmg_failed_matrix with the structure
      * gmg_failed_structure; ML serves matrices of that structure. */
