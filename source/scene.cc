@@ -381,6 +381,23 @@ namespace bsmpm
     try
       {
         boundary_curves.update(points, grid);
+        // Points where the moved curves stretched or crowded, on the
+        // splines through the moved points, then the splines through the
+        // new chains.
+        if (step > 0)
+          {
+            const auto origins =
+              boundary_curves.adapt_point_spacing(points, grid);
+            if (std::any_of(origins.begin(), origins.end(), [](const auto &o) {
+                  return !o.empty();
+                }))
+              {
+                boundary_curves.update(points, grid);
+                if (contact.enabled())
+                  contact.follow_point_changes(origins);
+              }
+            boundary_curves.check_touching(grid.min_cell_size());
+          }
       }
     catch (const ExceptionBase &e)
       {
@@ -447,6 +464,20 @@ namespace bsmpm
       {
         std::vector<CellId> weak_cells;
         first_step = checkpoint.read_state(run_summary, output, weak_cells) + 1;
+        // The curves and the tracked list are rebuilt as at the start,
+        // which no longer matches points that were inserted or removed
+        // (their records begin with the first change).
+        for (const auto &record : run_summary.steps)
+          AssertThrow(record.quantities.count("curve1_points") == 0,
+                      ExcMessage(
+                        "This checkpoint cannot be resumed: the boundary "
+                        "curves gained or lost tracking points before it "
+                        "(from load step " +
+                        std::to_string(record.number) +
+                        "), and a resumed run rebuilds the curves as they "
+                        "were at the start. Resume from an earlier "
+                        "checkpoint, or run with 'Boundary curves/Point "
+                        "spacing/Adapt = false'."));
         assembly->restore_matrix(weak_cells);
       }
     if (pcout.is_active())
@@ -553,6 +584,7 @@ namespace bsmpm
     if (constitutive_update)
       run_summary.quantities["yielded_points"] = record.n_yielded;
     contact.record(run_summary.quantities);
+    boundary_curves.record_point_changes(run_summary.quantities);
     collapse_detector.record(run_summary.quantities);
   }
 

@@ -562,6 +562,8 @@ namespace bsmpm
                             "ones.");
         prm.leave_subsection();
       }
+    BoundaryPointSpacing::declare_parameters(prm);
+    CurveTouchCheck::declare_parameters(prm);
     prm.leave_subsection();
   }
 
@@ -573,6 +575,8 @@ namespace bsmpm
     curves.clear();
     sources.clear();
     prm.enter_subsection("Boundary curves");
+    point_spacing.parse_parameters(prm);
+    touch_check.parse_parameters(prm);
     for (unsigned int c = 0; c < max_curves; ++c)
       {
         prm.enter_subsection(curve_section(c));
@@ -757,6 +761,14 @@ namespace bsmpm
                                    "points intersects itself."));
           }
       }
+
+    // Curves that the input draws across each other, or closer than the
+    // touching distance, are refused here, before the first step (a
+    // touch that deformation makes is found after the step that makes it:
+    // check_touching()).
+    const std::string touch =
+      touch_check.find_touch(curves, grid.min_cell_size());
+    AssertThrow(touch.empty(), ExcMessage("In the input: " + touch));
 
     trimming_grid = &grid;
     trimming_state.assign(std::size_t(grid.n_cells(0)) * grid.n_cells(1), 0);
@@ -1099,5 +1111,161 @@ namespace bsmpm
     for (const auto &curve : curves)
       n += curve.positions.size();
     return n;
+  }
+
+
+
+  std::vector<BoundaryCurves::PointOrigins>
+  BoundaryCurves::adapt_point_spacing(MaterialPoints       &points,
+                                      const BackgroundGrid &grid)
+  {
+    std::vector<PointOrigins> origins(curves.size());
+    n_inserted.resize(curves.size(), 0);
+    n_removed.resize(curves.size(), 0);
+    if (!point_spacing.enabled())
+      return origins;
+    const double       h       = grid.min_cell_size();
+    const unsigned int invalid = numbers::invalid_unsigned_int;
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      {
+        // Points of the outer layer of material points carry volume:
+        // they cannot be made or dropped here.
+        if (sources[c].kind == "material points")
+          continue;
+        BoundaryCurve                   &curve = curves[c];
+        const BoundaryPointSpacing::Plan plan  = point_spacing.plan(curve, h);
+        if (plan.empty())
+          continue;
+        const unsigned int n = curve.positions.size();
+        std::vector<bool>  removed(n, false), split(n, false);
+        for (const unsigned int k : plan.removed_points)
+          removed[k] = true;
+        for (const unsigned int s : plan.split_segments)
+          split[s] = true;
+
+        // The new chain, its new points at the middle of their segments'
+        // parameter ranges on the spline through the moved points.
+        PointOrigins             &origin = origins[c];
+        std::vector<unsigned int> new_index(n, invalid);
+        std::vector<Point<2>>     new_positions;
+        std::vector<unsigned int> neighbour_slots;
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            if (!removed[k])
+              {
+                new_index[k] = origin.size();
+                origin.push_back({{k, k}});
+              }
+            if (split[k])
+              {
+                const unsigned int k1    = (k + 1) % n;
+                const auto         range = curve.spline->segment_parameters(k);
+                origin.push_back({{k, k1}});
+                new_positions.push_back(
+                  curve.spline->value((range[0] + range[1]) / 2));
+                neighbour_slots.push_back(curve.tracked_slots[k]);
+                neighbour_slots.push_back(curve.tracked_slots[k1]);
+              }
+          }
+
+        // The state of a new point: the mean of its neighbours'; its total
+        // displacement takes it from the mean of their starting places to
+        // where it is.
+        const auto neighbours = points.tracked_properties(neighbour_slots);
+        std::vector<std::vector<double>> new_properties;
+        std::vector<Point<2>>            new_initial_positions;
+        for (unsigned int i = 0; i < new_positions.size(); ++i)
+          {
+            std::vector<double> props = neighbours[2 * i];
+            for (unsigned int j = 0; j < props.size(); ++j)
+              props[j] = (props[j] + neighbours[2 * i + 1][j]) / 2;
+            using P = MaterialPoints::Property;
+            const Point<2> X(props[P::initial_position],
+                             props[P::initial_position + 1]);
+            props[P::displacement]     = new_positions[i][0] - X[0];
+            props[P::displacement + 1] = new_positions[i][1] - X[1];
+            new_properties.push_back(props);
+            new_initial_positions.push_back(X);
+          }
+        const std::vector<unsigned int> new_slots =
+          points.add_tracked_points(new_positions, new_properties);
+        std::vector<unsigned int> removed_slots;
+        for (const unsigned int k : plan.removed_points)
+          removed_slots.push_back(curve.tracked_slots[k]);
+        points.remove_tracked_points(removed_slots);
+
+        // The chain's own records, in the new order.
+        std::vector<Point<2>>     positions, initial_positions;
+        std::vector<Voigt>        stresses;
+        std::vector<unsigned int> slots;
+        unsigned int              next_new = 0;
+        for (const auto &[a, b] : origin)
+          if (a == b)
+            {
+              positions.push_back(curve.positions[a]);
+              initial_positions.push_back(curve.initial_positions[a]);
+              stresses.push_back(curve.stresses[a]);
+              slots.push_back(curve.tracked_slots[a]);
+            }
+          else
+            {
+              positions.push_back(new_positions[next_new]);
+              initial_positions.push_back(new_initial_positions[next_new]);
+              stresses.push_back(0.5 * (curve.stresses[a] + curve.stresses[b]));
+              slots.push_back(new_slots[next_new]);
+              ++next_new;
+            }
+        // Corners and the ends of ranges are never removed: renumbered,
+        // they bound the same stretch of material as before.
+        const unsigned int n_new    = origin.size();
+        const auto         renumber = [&](const unsigned int k) {
+          AssertThrow(k == n || new_index[k % n] != invalid,
+                      ExcInternalError());
+          return k == n ? n_new : new_index[k];
+        };
+        for (auto &corner : curve.corners)
+          corner = renumber(corner);
+        for (auto &condition : curve.conditions)
+          if (condition.has_range())
+            {
+              condition.first_segment = renumber(condition.first_segment);
+              condition.end_segment   = renumber(condition.end_segment);
+            }
+        curve.positions         = std::move(positions);
+        curve.initial_positions = std::move(initial_positions);
+        curve.stresses          = std::move(stresses);
+        curve.tracked_slots     = std::move(slots);
+        n_inserted[c] += new_positions.size();
+        n_removed[c] += removed_slots.size();
+        any_points_changed = true;
+      }
+    return origins;
+  }
+
+
+
+  void
+  BoundaryCurves::check_touching(const double h) const
+  {
+    const std::string problem = touch_check.find_touch(curves, h);
+    AssertThrow(problem.empty(), ExcMessage(problem));
+  }
+
+
+
+  void
+  BoundaryCurves::record_point_changes(
+    std::map<std::string, double> &quantities)
+  {
+    if (!any_points_changed)
+      return;
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      {
+        const std::string name                = "curve" + std::to_string(c + 1);
+        quantities[name + "_points_inserted"] = n_inserted[c];
+        quantities[name + "_points_removed"]  = n_removed[c];
+        quantities[name + "_points"]          = curves[c].positions.size();
+        n_inserted[c] = n_removed[c] = 0;
+      }
   }
 } // namespace bsmpm

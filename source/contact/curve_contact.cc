@@ -460,6 +460,26 @@ namespace bsmpm
 
 
   void
+  CurveContact::follow_point_changes(
+    const std::vector<BoundaryCurves::PointOrigins> &origins)
+  {
+    for (unsigned int c = 0; c < origins.size() && c < point_tractions.size();
+         ++c)
+      if (!origins[c].empty())
+        {
+          const auto               &old = point_tractions[c];
+          std::vector<Tensor<1, 2>> tractions;
+          for (const auto &[a, b] : origins[c])
+            tractions.push_back(a < old.size() && b < old.size() ?
+                                  0.5 * (old[a] + old[b]) :
+                                  Tensor<1, 2>());
+          point_tractions[c] = std::move(tractions);
+        }
+  }
+
+
+
+  void
   CurveContact::record(std::map<std::string, double> &quantities) const
   {
     for (unsigned int b = 0; b < bodies.size(); ++b)

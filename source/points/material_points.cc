@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace bsmpm
@@ -461,11 +462,125 @@ namespace bsmpm
           }
       }
     std::sort(tracked_slots.begin(), tracked_slots.end());
+    record_tracked_points();
+  }
+
+
+
+  void
+  MaterialPoints::record_tracked_points()
+  {
     tracked_local.clear();
     for (const auto &particle : particles)
       record_if_tracked(particle.get_id(),
                         particle.get_location(),
                         particle.get_properties());
+  }
+
+
+
+  std::vector<std::vector<double>>
+  MaterialPoints::tracked_properties(
+    const std::vector<unsigned int> &slots) const
+  {
+    // Slot -> its places in the request (a slot may be asked for twice).
+    std::map<unsigned int, std::vector<unsigned int>> wanted;
+    for (unsigned int i = 0; i < slots.size(); ++i)
+      wanted[slots[i]].push_back(i);
+    // (slot, properties...) of the wanted points this process owns.
+    std::vector<double> local;
+    for (const auto &particle : particles)
+      {
+        const unsigned int slot = tracked_slot(particle.get_id());
+        if (slot == numbers::invalid_unsigned_int || wanted.count(slot) == 0)
+          continue;
+        local.push_back(slot);
+        const auto props = particle.get_properties();
+        local.insert(local.end(), props.begin(), props.end());
+      }
+    const auto all = Utilities::MPI::all_gather(grid.mpi_communicator(), local);
+    std::vector<std::vector<double>> result(slots.size());
+    const unsigned int               stride = n_point_properties + 1;
+    for (const auto &part : all)
+      for (std::size_t start = 0; start + stride <= part.size();
+           start += stride)
+        for (const unsigned int i :
+             wanted[static_cast<unsigned int>(part[start])])
+          result[i].assign(part.begin() + start + 1,
+                           part.begin() + start + stride);
+    for (unsigned int i = 0; i < slots.size(); ++i)
+      AssertThrow(result[i].size() == n_point_properties,
+                  ExcMessage("The tracked boundary point in slot " +
+                             std::to_string(slots[i]) + " was lost."));
+    return result;
+  }
+
+
+
+  std::vector<unsigned int>
+  MaterialPoints::add_tracked_points(
+    const std::vector<Point<2>>            &positions,
+    const std::vector<std::vector<double>> &properties)
+  {
+    AssertThrow(positions.size() == properties.size(), ExcInternalError());
+    std::vector<unsigned int> slots;
+    for (unsigned int i = 0; i < positions.size(); ++i)
+      {
+        const Point<2> &p = positions[i];
+        AssertThrow(grid.contains(p),
+                    ExcMessage("A boundary point inserted at " +
+                               format_point(p) +
+                               " lies outside the background grid."));
+        AssertThrow(properties[i].size() == n_point_properties,
+                    ExcInternalError());
+        const types::particle_index id   = next_id++;
+        const unsigned int          slot = n_tracked_slots++;
+        slots.push_back(slot);
+        is_tracked.resize(next_id, false);
+        is_tracked[id] = true;
+        // Ids grow, so the list stays sorted by id.
+        tracked_slots.emplace_back(id, slot);
+        const auto ij   = grid.cell_index(p);
+        const auto cell = grid.locally_owned_cell(ij);
+        if (cell == grid.dof_handler().end())
+          continue;
+        std::vector<double> props = properties[i];
+        props[Property::volume]   = 0.;
+        particles.insert_particle(p,
+                                  grid.local_coordinates(p, ij),
+                                  id,
+                                  cell,
+                                  ArrayView<const double>(props.data(),
+                                                          props.size()));
+      }
+    particles.update_cached_numbers();
+    record_tracked_points();
+    return slots;
+  }
+
+
+
+  void
+  MaterialPoints::remove_tracked_points(const std::vector<unsigned int> &slots)
+  {
+    std::set<unsigned int> removed(slots.begin(), slots.end());
+    std::vector<Particles::ParticleHandler<2>::particle_iterator> doomed;
+    for (auto particle = particles.begin(); particle != particles.end();
+         ++particle)
+      if (removed.count(tracked_slot(particle->get_id())) > 0)
+        doomed.push_back(particle);
+    particles.remove_particles(doomed);
+    for (auto &[id, slot] : tracked_slots)
+      if (removed.count(slot) > 0)
+        is_tracked[id] = false;
+    tracked_slots.erase(std::remove_if(tracked_slots.begin(),
+                                       tracked_slots.end(),
+                                       [&](const auto &entry) {
+                                         return removed.count(entry.second) > 0;
+                                       }),
+                        tracked_slots.end());
+    particles.update_cached_numbers();
+    record_tracked_points();
   }
 
 
@@ -507,15 +622,17 @@ namespace bsmpm
     std::size_t n = 0;
     for (const auto &part : all)
       n += part.size();
-    positions.resize(n);
-    stresses.resize(n);
+    AssertThrow(n == tracked_slots.size(),
+                ExcMessage("A tracked boundary point was lost."));
+    positions.assign(n_tracked_slots, Point<2>());
+    stresses.assign(n_tracked_slots, Voigt());
     if (states != nullptr)
-      states->resize(n);
+      states->assign(n_tracked_slots, TrackedState{{0., 0., 0., 0., 0., 1.}});
     for (const auto &part : all)
       for (const auto &state : part)
         {
           const auto slot = static_cast<std::size_t>(state[0]);
-          AssertThrow(slot < n,
+          AssertThrow(slot < n_tracked_slots,
                       ExcMessage("A tracked boundary point was lost."));
           positions[slot] = Point<2>(state[1], state[2]);
           stresses[slot]  = Voigt({state[3], state[4], state[5]});

@@ -464,15 +464,16 @@ case("curve_crossing_itself", "curve",
      curve2("0.2, 0.2; 0.8, 0.8; 0.8, 0.2; 0.2, 0.8", closed=True),
      "intersects itself")
 case("open_curve_crossing_itself", "curve",
-     curve2("0.3, 0.3; 0.7, 0.7; 0.7, 0.3; 0.3, 0.7"), OK)
+     curve2("0.3, 0.3; 0.7, 0.7; 0.7, 0.3; 0.3, 0.7"),
+     "In the input: Boundary curves/Curve 2 touches itself")
 case("spline_overshooting_grid", "curve",
-     curve2("0.2, 0.2; 0.8, 0.8; 0.8, 0.2; 0.2, 0.8"),
+     curve2("0.1, 0.5; 0.9, 0.9; 0.9, 0.1; 0.5, 0.1"),
      "Curve 2: The boundary curve leaves the background grid")
 case("curves_crossing_each_other", "curve",
      curve2("0.5, 0.5; 0.5, 1.25", condition="pressure 1000") +
      s("Background grid/Upper right corner=1, 1.5") +
      s("Background grid/Cells per direction=2, 3") +
-     s("Verification/Bounds="), OK)
+     s("Verification/Bounds="), "In the input: Boundary curves/Curve 1 touches Curve 2")
 case("curve_repeated_point", "curve",
      curve2("0.2, 0.2; 0.5, 0.5; 0.5, 0.5; 0.8, 0.6"), "Curve 2")
 case("curve_all_points_equal", "curve",

@@ -4,6 +4,8 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <bsmpm/boundary/boundary_point_spacing.h>
+#include <bsmpm/boundary/curve_touch_check.h>
 #include <bsmpm/geometry/b_spline_curve.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/geometry/body_region.h>
@@ -11,6 +13,8 @@
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/verification/exact_solution.h>
 
+#include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -377,6 +381,48 @@ namespace bsmpm
     unsigned int
     n_points() const;
 
+    /** Where each point of a changed chain comes from: the two points of
+     * the chain before the change whose mean it is (the same one twice for
+     * a point that stays). */
+    using PointOrigins = std::vector<std::array<unsigned int, 2>>;
+
+    /**
+     * Inserts and removes tracking points where the curves' points have
+     * drifted apart or crowded (BoundaryPointSpacing), in @p points and in
+     * the curves' chains: corners and the ranges of conditions are
+     * renumbered so that they keep their stretch of material. Call after
+     * update() (the splines through the moved points place the new ones),
+     * then update() again if anything changed. Decides from the curves,
+     * which every process holds alike (collective). Returns, per curve,
+     * where its new points come from; empty for a curve that did not
+     * change.
+     */
+    std::vector<PointOrigins>
+    adapt_point_spacing(MaterialPoints &points, const BackgroundGrid &grid);
+
+    /**
+     * Once any curve's points have changed in the run: sets
+     * curve<N>_points_inserted, curve<N>_points_removed (since the last
+     * call) and curve<N>_points (now) of every curve in @p quantities.
+     * Before that, sets nothing, so that runs whose curves keep their
+     * points report what they always did.
+     */
+    void
+    record_point_changes(std::map<std::string, double> &quantities);
+
+    /** Throws, naming the curves, their points and the place, where a
+     * curve touches itself or another one (CurveTouchCheck) on a grid of
+     * cell size @p h. */
+    void
+    check_touching(const double h) const;
+
+    /** Whether any curve's points have changed in the run. */
+    bool
+    points_changed() const
+    {
+      return any_points_changed;
+    }
+
   private:
     /**
      * If every curve lies on a named part of the body region's boundary
@@ -407,6 +453,14 @@ namespace bsmpm
 
     std::vector<BoundaryCurve> curves;
     std::vector<Source>        sources;
+
+    BoundaryPointSpacing point_spacing;
+    CurveTouchCheck      touch_check;
+
+    /** Points inserted and removed per curve since the last
+     * record_point_changes(). */
+    std::vector<unsigned int> n_inserted, n_removed;
+    bool                      any_points_changed = false;
 
     /** Per grid cell (row-major): 0 unknown, 1 kept, 2 trimmed, 3 cut by a
      * trimming curve; filled lazily by trims(). */

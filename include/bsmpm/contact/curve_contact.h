@@ -133,6 +133,14 @@ namespace bsmpm
     /** Adds rigid_body_N_force_x/y (the force of the body on the rigid
      * body, N/m), _displacement_x/y, _contact_length, _sliding_length and
      * _penetration (the largest) of the last finish_increment(). */
+    /** Carries the friction history (the tangential traction kept at the
+     * curves' points) over to the chains that
+     * BoundaryCurves::adapt_point_spacing() changed: a new point takes the
+     * mean of its two origins'. */
+    void
+    follow_point_changes(
+      const std::vector<BoundaryCurves::PointOrigins> &origins);
+
     void
     record(std::map<std::string, double> &quantities) const;
 

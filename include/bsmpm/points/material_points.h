@@ -241,9 +241,35 @@ namespace bsmpm
      * small strain, whose points store no state). */
     using TrackedState = std::array<double, 6>;
 
+    /**
+     * All properties of the tracked points in the slots @p slots (the same
+     * list on every process), gathered from the processes that own them:
+     * one vector of n_properties() values per slot, on every process.
+     */
+    std::vector<std::vector<double>>
+    tracked_properties(const std::vector<unsigned int> &slots) const;
+
+    /**
+     * Adds zero-volume tracking points at @p positions with the properties
+     * @p properties (n_properties() values each, the volume set to zero;
+     * the same lists on every process) and appends them to the tracked
+     * list. Returns their slots.
+     */
+    std::vector<unsigned int>
+    add_tracked_points(const std::vector<Point<2>>            &positions,
+                       const std::vector<std::vector<double>> &properties);
+
+    /**
+     * Removes the tracked points in the slots @p slots (the same list on
+     * every process) from the points. Their slots stay in the tracked list,
+     * unused: the other slots keep their numbers.
+     */
+    void
+    remove_tracked_points(const std::vector<unsigned int> &slots);
+
     /** Current positions and stresses of the tracked points, in the order
-     * given to track(), on every process; with @p states their
-     * constitutive states too. */
+     * given to track(), on every process (zero in the slots of removed
+     * points); with @p states their constitutive states too. */
     void
     tracked_states(std::vector<Point<2>>     &positions,
                    std::vector<Voigt>        &stresses,
@@ -368,8 +394,12 @@ namespace bsmpm
                               })
         ->second;
     }
-    /** Length of the tracked list given to track(). */
+    /** Length of the tracked list given to track() and extended by
+     * add_tracked_points(). */
     unsigned int n_tracked_slots = 0;
+    /** Refills tracked_local from every locally owned point. */
+    void
+    record_tracked_points();
     /** State of the locally owned tracked points: slot, x, y, stress and
      * the TrackedState. */
     std::vector<std::array<double, 12>> tracked_local;
