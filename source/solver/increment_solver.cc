@@ -6,6 +6,25 @@
 
 namespace bsmpm
 {
+  void
+  IncrementSolver::LinearSolves::add(const LinearSolver::Report &report)
+  {
+    const auto note = [](const std::string &m) {
+      const auto comma = m.find(", ");
+      return comma == std::string::npos ? std::string() : m.substr(comma);
+    };
+    const std::string earlier = note(method);
+    ++n_solves;
+    method = report.method;
+    if (note(method).empty())
+      method += earlier;
+    iterations += report.iterations;
+    refinement_steps += report.refinement_steps;
+    relative_residual = report.relative_residual;
+  }
+
+
+
   IncrementSolver::IncrementSolver(const Parts &parts, TimerOutput &timer)
     : parts(parts)
     , timer(timer)
@@ -131,13 +150,9 @@ namespace bsmpm
       for (const auto i : grid.locally_owned_dofs())
         increment(i) += correction(i);
       increment.update_ghost_values();
-      ++solves.n_solves;
-      solves.method = report.method;
-      solves.iterations += report.iterations;
-      solves.refinement_steps += report.refinement_steps;
-      solves.relative_residual = report.relative_residual;
-      const double size        = increment.l2_norm();
-      last_correction          = correction;
+      solves.add(report);
+      const double size = increment.l2_norm();
+      last_correction   = correction;
       return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
                             report.iterations);
     };
@@ -203,11 +218,7 @@ namespace bsmpm
                                                     rhs,
                                                     grid.dof_handler());
       assembly.constraints().distribute(solution);
-      ++solves.n_solves;
-      solves.method = report.method;
-      solves.iterations += report.iterations;
-      solves.refinement_steps += report.refinement_steps;
-      solves.relative_residual = report.relative_residual;
+      solves.add(report);
       return report.iterations;
     };
 

@@ -54,6 +54,11 @@ namespace bsmpm
       unsigned int iterations        = 0;
       unsigned int refinement_steps  = 0;
       double       relative_residual = 0;
+
+      /** Counts the solve of @p report; the method is the last solve's,
+       * with the note of an earlier one (", cg slow") if it has none. */
+      void
+      add(const LinearSolver::Report &report);
     };
 
     IncrementSolver(const Parts &parts, TimerOutput &timer);
