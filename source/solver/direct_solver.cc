@@ -8,6 +8,7 @@
 #include <Epetra_MpiComm.h>
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -51,7 +52,9 @@ namespace bsmpm
     Amesos factory;
     if (!factory.Query(name))
       return Status::unavailable;
-    problem.SetOperator(const_cast<Epetra_CrsMatrix *>(&matrix));
+    solver.reset();
+    matrix_copy = std::make_unique<Epetra_CrsMatrix>(matrix);
+    problem.SetOperator(matrix_copy.get());
     const bool mumps = name == "Amesos_Mumps";
     for (const int workspace : {20, 100, 400, 1600})
       {
@@ -113,6 +116,30 @@ namespace bsmpm
           }
       }
     return Status::out_of_memory;
+  }
+
+
+
+  DirectSolver::Status
+  DirectSolver::refactorize(const Epetra_CrsMatrix &matrix)
+  {
+    if (!solver || matrix.NumMyRows() != matrix_copy->NumMyRows())
+      return Status::other;
+    // The same structure: the values row by row.
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      {
+        int     n = 0, n_copy = 0;
+        double *values = nullptr, *copy = nullptr;
+        int    *columns = nullptr, *copy_columns = nullptr;
+        matrix.ExtractMyRowView(row, n, values, columns);
+        matrix_copy->ExtractMyRowView(row, n_copy, copy, copy_columns);
+        if (n != n_copy)
+          return Status::other;
+        std::copy(values, values + n, copy);
+      }
+    Silence quiet(std::cerr);
+    return solver->NumericFactorization() == 0 ? Status::success :
+                                                 Status::other;
   }
 
 

@@ -49,10 +49,16 @@ namespace bsmpm
     DirectSolver();
     ~DirectSolver();
 
-    /** Factorises @p matrix (kept by reference until the next call) with
-     * "Amesos_Mumps" or "Amesos_Klu". */
+    /** Factorises a copy of @p matrix with "Amesos_Mumps" or
+     * "Amesos_Klu" (a copy: the factors may outlive the caller's
+     * matrix, and Amesos reads the matrix when it lets go of them). */
     Status
     factorize(const Epetra_CrsMatrix &matrix, const std::string &name);
+
+    /** Factorises @p matrix, whose structure is that of the last
+     * factorize(), reusing the symbolic analysis. */
+    Status
+    refactorize(const Epetra_CrsMatrix &matrix);
 
     /** x = A^-1 b with the factors; false if the solver failed. */
     bool
@@ -60,6 +66,7 @@ namespace bsmpm
           const TrilinosWrappers::MPI::Vector &b);
 
   private:
+    std::unique_ptr<Epetra_CrsMatrix>  matrix_copy;
     Epetra_LinearProblem               problem;
     std::unique_ptr<Amesos_BaseSolver> solver;
   };

@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <bsmpm/solver/direct_solver.h>
 #include <bsmpm/solver/geometric_multigrid.h>
 
 #include <cstdint>
@@ -168,6 +169,15 @@ namespace bsmpm
     mutable const void   *gmg_failed_matrix    = nullptr;
     mutable std::uint64_t gmg_failed_structure = 0;
     unsigned int          condition_iterations = 2000;
+
+    /** The factors of the last direct solve, the matrix object they were
+     * computed for, its structure (matrix_structure()) and the method's
+     * name: a matrix of the same structure is factorised again with the
+     * same symbolic analysis. */
+    mutable std::unique_ptr<DirectSolver> direct_factors;
+    mutable const void                   *direct_matrix    = nullptr;
+    mutable std::uint64_t                 direct_structure = 0;
+    mutable std::string                   direct_method;
 
     /** The AMG hierarchy of the last CG solve, the matrix it was built on
      * and a fingerprint of that matrix's structure (the pattern and the
