@@ -214,11 +214,18 @@ namespace bsmpm
     // matrix of the same structure (Newton's tangents within a load step):
     // in 2D they cost about as much as the numeric factorisation (0.09 s
     // each at 29 k unknowns, doc/benchmarks.md).
+    // Both decisions on every process alike: the factorisations are
+    // collective.
+    const MPI_Comm comm = matrix.get_mpi_communicator();
     if (direct_factors &&
         Utilities::MPI::min(
           (direct_matrix == &A && direct_structure == structure) ? 1 : 0,
-          matrix.get_mpi_communicator()) == 1 &&
-        direct_factors->refactorize(A) == DirectSolver::Status::success)
+          comm) == 1 &&
+        Utilities::MPI::min(direct_factors->refactorize(A) ==
+                                DirectSolver::Status::success ?
+                              1 :
+                              0,
+                            comm) == 1)
       report.method = direct_method;
     DirectSolver::Status mumps = DirectSolver::Status::unavailable;
     DirectSolver::Status klu   = DirectSolver::Status::unavailable;
