@@ -318,6 +318,10 @@ namespace bsmpm
         for (const auto &[name, count] : cut_cell_quadrature.statistics())
           run_summary.quantities[name] = count;
       }
+    // The cells of the body without points borrow their neighbours'
+    // state, across the partition's edges too.
+    if (constitutive_update && constitutive_update->completes_moments())
+      points.exchange_neighbourhood_state();
   }
 
 

@@ -96,8 +96,12 @@ namespace bsmpm
           keep[condition.first_segment % n] = true;
           keep[condition.end_segment % n]   = true;
         }
-    const double                                  cos_30 = std::sqrt(3.) / 2;
-    std::vector<std::tuple<double, unsigned int>> candidates;
+    const double cos_30 = std::sqrt(3.) / 2;
+    // Shortest first; lengths equal to 1e-9 h count as equal and go in
+    // the order of the points, so that round-off (which differs between
+    // runs on several processes) does not choose among equal segments,
+    // as in a uniform compression.
+    std::vector<std::tuple<long long, unsigned int>> candidates;
     if (!curve.closed || n > 4)
       for (unsigned int k = 0; k < n; ++k)
         {
@@ -115,7 +119,7 @@ namespace bsmpm
           if (length[s] < remove_below * h &&
               length[s] * stretch_before_split < start_length[s] &&
               merged < insert_above * h)
-            candidates.emplace_back(length[s], k);
+            candidates.emplace_back(std::llround(length[s] / (1e-9 * h)), k);
         }
     std::sort(candidates.begin(), candidates.end());
     std::vector<bool> removed(n, false);

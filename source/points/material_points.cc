@@ -180,6 +180,7 @@ namespace bsmpm
     double              max_stress_square       = 0;
     double              max_increment_square    = 0;
     tracked_local.clear();
+    neighbourhood_current = false;
     find_material_cells();
 
     std::vector<types::global_dof_index> dof_indices(
@@ -523,6 +524,7 @@ namespace bsmpm
     const std::vector<std::vector<double>> &properties)
   {
     AssertThrow(positions.size() == properties.size(), ExcInternalError());
+    neighbourhood_current = false;
     std::vector<unsigned int> slots;
     for (unsigned int i = 0; i < positions.size(); ++i)
       {
@@ -563,6 +565,7 @@ namespace bsmpm
   void
   MaterialPoints::remove_tracked_points(const std::vector<unsigned int> &slots)
   {
+    neighbourhood_current = false;
     std::set<unsigned int> removed(slots.begin(), slots.end());
     std::vector<Particles::ParticleHandler<2>::particle_iterator> doomed;
     for (auto particle = particles.begin(); particle != particles.end();
@@ -659,23 +662,25 @@ namespace bsmpm
   MaterialPoints::neighbourhood_mean_properties(
     const DoFHandler<2>::active_cell_iterator &cell) const
   {
+    AssertThrow(neighbourhood_current,
+                ExcMessage("MaterialPoints::exchange_neighbourhood_state() "
+                           "after the points changed"));
+    const unsigned int  W = n_point_properties + 1;
     std::vector<double> mean;
     double              volume     = 0;
     const auto          add_points = [&](const auto &neighbour) {
-      if (!neighbour->is_active() || !neighbour->is_locally_owned())
+      if (!neighbour->is_active() || neighbour->is_artificial())
         return;
-      for (const auto &particle : particles.particles_in_cell(neighbour))
-        {
-          const auto   props = particle.get_properties();
-          const double V     = props[Property::volume];
-          if (!(V > 0))
-            continue;
-          if (mean.empty())
-            mean.assign(props.size(), 0.);
-          for (unsigned int k = 0; k < props.size(); ++k)
-            mean[k] += V * props[k];
-          volume += V;
-        }
+      const types::global_dof_index first =
+        neighbour->global_active_cell_index() * W;
+      const double V = neighbourhood_sums[first + W - 1];
+      if (!(V > 0))
+        return;
+      if (mean.empty())
+        mean.assign(W - 1, 0.);
+      for (unsigned int k = 0; k + 1 < W; ++k)
+        mean[k] += neighbourhood_sums[first + k];
+      volume += V;
     };
     // The face neighbours; where none holds material (a corner cell whose
     // face neighbours are slivers without points), the diagonal ones.
@@ -684,13 +689,68 @@ namespace bsmpm
         add_points(cell->neighbor(f));
     if (mean.empty())
       for (const unsigned int f : {0u, 1u})
-        if (!cell->at_boundary(f) && cell->neighbor(f)->is_active())
+        if (!cell->at_boundary(f) && cell->neighbor(f)->is_active() &&
+            !cell->neighbor(f)->is_artificial())
           for (const unsigned int g : {2u, 3u})
             if (!cell->neighbor(f)->at_boundary(g))
               add_points(cell->neighbor(f)->neighbor(g));
     for (double &value : mean)
       value /= volume;
     return mean;
+  }
+
+
+
+  void
+  MaterialPoints::exchange_neighbourhood_state()
+  {
+    // The cells' sums in blocks of W entries: the cells' own partition
+    // (owned and ghost cells) with every index widened to W.
+    const auto &tria  = grid.triangulation();
+    const auto  cells = tria.global_active_cell_index_partitioner().lock();
+    const types::global_dof_index W = n_point_properties + 1;
+    if (neighbourhood_sums.size() != cells->size() * W)
+      {
+        IndexSet owned(cells->size() * W), ghost(cells->size() * W);
+        for (const auto i : cells->locally_owned_range())
+          owned.add_range(i * W, (i + 1) * W);
+        for (const auto i : cells->ghost_indices())
+          ghost.add_range(i * W, (i + 1) * W);
+        neighbourhood_sums.reinit(std::make_shared<Utilities::MPI::Partitioner>(
+          owned, ghost, cells->get_mpi_communicator()));
+      }
+    neighbourhood_sums = 0;
+    std::vector<std::pair<types::particle_index, ArrayView<const double>>>
+      ordered;
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const types::global_dof_index first =
+          cell->global_active_cell_index() * W;
+        // Summed in the order of the points' ids: the order of the points
+        // in a cell follows the order in which messages arrived when points
+        // changed process, and a sum in that order makes one run differ
+        // from the next in the last bits.
+        ordered.clear();
+        for (const auto &particle : particles.particles_in_cell(cell))
+          if (particle.get_properties()[Property::volume] > 0)
+            ordered.emplace_back(particle.get_id(), particle.get_properties());
+        std::sort(ordered.begin(),
+                  ordered.end(),
+                  [](const auto &a, const auto &b) {
+                    return a.first < b.first;
+                  });
+        for (const auto &[id, props] : ordered)
+          {
+            const double V = props[Property::volume];
+            for (unsigned int k = 0; k + 1 < W; ++k)
+              neighbourhood_sums[first + k] += V * props[k];
+            neighbourhood_sums[first + W - 1] += V;
+          }
+      }
+    neighbourhood_sums.update_ghost_values();
+    neighbourhood_current = true;
   }
 
 

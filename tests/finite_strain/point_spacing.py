@@ -20,10 +20,10 @@ the straight side stays straight); the right side (curve 2) gains points
 in the stretch and loses some in the compression, and the per-step counts
 add up to its final number of points; with --np 2 the parallel run gives
 the same counts per step and the same body area and errors to 1e-9 in
-the compression (the stretch differs between np = 1 and 2 with or without
-point spacing, R_sigma_yy 6e-3 against 2e-13 at np = 1 for pressure -4e5
-in 8 steps: a parallel difference of large tensile finite strain that is
-not this feature's, so it is not compared).
+both cases (the stretch once differed, R_sigma_yy 6e-3 against 2e-13 at
+np = 1: the cells that the body enters borrowed only the state of
+neighbours on their own process; MaterialPoints::
+exchange_neighbourhood_state()).
 
 Usage: point_spacing.py --bsmpm BSMPM [--np 2]
 """
@@ -108,7 +108,7 @@ def main():
                 failures.append("stretch: no point inserted")
             if case == "compression" and not sum(removed) > 0:
                 failures.append("compression: no point removed")
-            if args.np > 1 and case == "compression":
+            if args.np > 1:
                 n_failures = len(failures)
                 parallel, problem = run(args.bsmpm, case, tmp, args.np)
                 if parallel is None:
@@ -123,9 +123,15 @@ def main():
                         failures.append(f"{case} np {args.np}: step {s + 1} "
                                         "differs from the serial run")
                 for name, value in errors.items():
+                    # Where the largest error lies is chosen by round-off
+                    # when the errors are round-off; stresses are compared
+                    # on the scale of the pressure.
+                    if "_at_" in name:
+                        continue
+                    scale = abs(p) if "sigma" in name else 1.0
                     other = parallel["errors"].get(name)
                     if other is None or abs(value - other) > \
-                            1e-9 * max(1.0, abs(value)):
+                            1e-9 * max(scale, abs(value)):
                         failures.append(f"{case} np {args.np}: {name} "
                                         f"{other} against {value}")
                 print(f"{case:12s} np {args.np}: "

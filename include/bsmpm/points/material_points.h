@@ -280,16 +280,27 @@ namespace bsmpm
     holds_material(const DoFHandler<2>::active_cell_iterator &cell) const;
 
     /**
-     * The mean properties of the points with volume in the locally owned
-     * face neighbours of @p cell (if none holds material, the diagonal
+     * The mean properties of the points with volume in the face neighbours
+     * of @p cell, owned or ghost (if none holds material, the diagonal
      * neighbours), weighted by their volumes; empty if none of them holds
      * material. The state of the neighbourhood for a cell of
      * the body that holds no point (ConstitutiveUpdate): exact wherever
-     * the state is uniform.
+     * the state is uniform. Needs exchange_neighbourhood_state() after the
+     * points last changed.
      */
     std::vector<double>
     neighbourhood_mean_properties(
       const DoFHandler<2>::active_cell_iterator &cell) const;
+
+    /**
+     * Sums the volume-weighted properties of the points of every owned
+     * cell and sends them to the processes that hold the cell as a ghost
+     * (collective), for neighbourhood_mean_properties(): a cell next to the
+     * partition's edge must borrow the same state as it would in a serial
+     * run.
+     */
+    void
+    exchange_neighbourhood_state();
 
     /**
      * Finds which owned and ghost cells hold material (collective), for
@@ -358,6 +369,15 @@ namespace bsmpm
     /** Whether each owned and ghost cell holds material, by
      * active_cell_index() (find_material_cells()). */
     std::vector<bool> material_cells;
+
+    /** Per owned and ghost cell (global active cell index c), the sums
+     * sum_p V_p q_p of the properties q of its points at c W + k and their
+     * volume sum_p V_p at c W + W - 1, W the number of properties plus
+     * one (exchange_neighbourhood_state()). */
+    LinearAlgebra::distributed::Vector<double> neighbourhood_sums;
+
+    /** Whether neighbourhood_sums holds the points as they are. */
+    bool neighbourhood_current = false;
 
     /** Records position and stress of a point if it is tracked. */
     void
