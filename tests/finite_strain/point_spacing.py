@@ -25,6 +25,9 @@ np = 1: the cells that the body enters borrowed only the state of
 neighbours on their own process; MaterialPoints::
 exchange_neighbourhood_state()).
 
+Serially also: a checkpoint written after a curve gained points is refused
+on resume with a message, one written before it resumes to the same end.
+
 Usage: point_spacing.py --bsmpm BSMPM [--np 2]
 """
 
@@ -75,6 +78,49 @@ def run(bsmpm, case, tmp, np):
         return None, f"exit {result.returncode}: {result.stderr[-400:]}"
     with open(os.path.join(directory, "summary.json")) as f:
         return json.load(f), ""
+
+
+def check_resume(bsmpm, tmp):
+    """The stretch with a checkpoint after every step: resuming the one
+    written after the side gained points (step 4) must be refused with a
+    message, resuming the one before it must end as the whole run."""
+    failures = []
+    directory = os.path.join(tmp, "resume")
+    prm = directory + ".prm"
+    with open(prm, "w") as f:
+        f.write(parameter_file("stretch", directory))
+    whole = subprocess.run([bsmpm, prm, "--set",
+                            "Output/Checkpoint interval=1"],
+                           capture_output=True, text=True)
+    if whole.returncode != 0:
+        return [f"resume: the run with checkpoints failed: "
+                f"{whole.stderr[-400:]}"]
+    with open(os.path.join(directory, "summary.json")) as f:
+        expected = json.load(f)
+    late = subprocess.run(
+        [bsmpm, "--resume", os.path.join(directory, "checkpoint-4")],
+        capture_output=True, text=True)
+    if late.returncode == 0 or \
+            "cannot be resumed" not in late.stdout + late.stderr:
+        failures.append("resume: the checkpoint written after points were "
+                        "inserted was not refused with a message")
+    early = subprocess.run(
+        [bsmpm, "--resume", os.path.join(directory, "checkpoint-3")],
+        capture_output=True, text=True)
+    if early.returncode != 0:
+        failures.append(f"resume: checkpoint-3 failed: "
+                        f"{early.stderr[-400:]}")
+    else:
+        with open(os.path.join(directory, "summary.json")) as f:
+            resumed = json.load(f)
+        last = [r["steps"][-1]["quantities"] for r in (expected, resumed)]
+        if last[0].get("curve2_points") != last[1].get("curve2_points") or \
+                resumed["errors"]["R_sigma_yy"] > BOUND:
+            failures.append("resume: the run resumed from checkpoint-3 does "
+                            "not end as the whole run")
+    print(f"resume       after the change {'refused' if late.returncode else 'ran'}, "
+          f"before it {'ends as the whole run' if not failures else 'differs'}")
+    return failures
 
 
 def main():
@@ -136,6 +182,8 @@ def main():
                                         f"{other} against {value}")
                 print(f"{case:12s} np {args.np}: "
                       f"{'same' if len(failures) == n_failures else 'differs'}")
+        if args.np == 1:
+            failures += check_resume(args.bsmpm, tmp)
     for failure in failures:
         print("FAILED:", failure)
     return 1 if failures else 0
