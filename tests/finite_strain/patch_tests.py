@@ -207,6 +207,11 @@ def main():
     parser.add_argument("--only", default="",
                         help="run only the runs whose description holds "
                         "this text (e.g. nitsche)")
+    parser.add_argument("--run", action="append", default=[],
+                        help="instead of the test's runs, the run "
+                        "'CASE;SUPPORT;LAYOUT;STEPS' (e.g. "
+                        "'compression;implicit boundary;per cell 3;1'); "
+                        "may be repeated")
     args = parser.parse_args()
 
     # (case, support, layout, load steps): the layouts and step counts
@@ -226,6 +231,9 @@ def main():
             ("compression", "nitsche", "per cell 3", 5),
             ("stretch", "nitsche", "per cell 2", 1),
             ("shear", "nitsche", "per cell 2", 10)]
+    if args.run:
+        runs = [(c, sup, lay, int(n)) for c, sup, lay, n in
+                (r.split(";") for r in args.run)]
     if args.only:
         runs = [r for r in runs if args.only in " ".join(map(str, r))]
     failures, worst = [], 0.0
