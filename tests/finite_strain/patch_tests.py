@@ -214,23 +214,40 @@ def main():
                         "may be repeated")
     args = parser.parse_args()
 
-    # (case, support, layout, load steps): the layouts and step counts
-    # spread over the cases (about 12 s in a Debug build for the pressure
-    # cases).
-    runs = [("compression", "pressure", "per cell 2", 10),
+    # (case, support, layout, load steps): every layout a user would pick
+    # for a square (per cell 1 to 4 points per direction, a lattice, cell
+    # centroids; polar needs an annulus sector) and 1, 2, 3, 5 and 10 load
+    # steps, spread over the cases and supports so that each layout meets
+    # each of them somewhere (about 40 s in a Debug build).
+    runs = [("compression", "pressure", "per cell 1", 10),
+            ("compression", "pressure", "per cell 2", 10),
             ("compression", "pressure", "per cell 3", 6),
+            ("compression", "pressure", "per cell 4", 2),
             ("compression", "pressure", "lattice 9", 6),
+            ("compression", "pressure", "cell centroid", 10),
             ("compression", "pressure", "per cell 2", 3),
+            ("stretch", "pressure", "per cell 1", 5),
             ("stretch", "pressure", "per cell 2", 5),
             ("stretch", "pressure", "per cell 3", 4),
+            ("stretch", "pressure", "cell centroid", 1),
+            ("compression", "implicit boundary", "per cell 1", 5),
             ("compression", "implicit boundary", "per cell 2", 10),
-            ("compression", "implicit boundary", "per cell 3", 5),
+            ("compression", "implicit boundary", "per cell 3", 1),
+            ("compression", "implicit boundary", "per cell 3", 2),
+            ("compression", "implicit boundary", "lattice 9", 2),
             ("stretch", "implicit boundary", "per cell 2", 5),
+            ("stretch", "implicit boundary", "cell centroid", 10),
+            ("shear", "implicit boundary", "per cell 1", 2),
             ("shear", "implicit boundary", "per cell 2", 5),
-            ("shear", "implicit boundary", "per cell 3", 5),
+            ("shear", "implicit boundary", "per cell 3", 1),
+            ("shear", "implicit boundary", "per cell 4", 5),
+            ("compression", "nitsche", "per cell 1", 10),
             ("compression", "nitsche", "per cell 3", 5),
+            ("compression", "nitsche", "per cell 4", 1),
             ("stretch", "nitsche", "per cell 2", 1),
-            ("shear", "nitsche", "per cell 2", 10)]
+            ("stretch", "nitsche", "lattice 9", 5),
+            ("shear", "nitsche", "per cell 2", 10),
+            ("shear", "nitsche", "cell centroid", 2)]
     if args.run:
         runs = [(c, sup, lay, int(n)) for c, sup, lay, n in
                 (r.split(";") for r in args.run)]
