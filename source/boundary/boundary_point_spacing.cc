@@ -96,8 +96,13 @@ namespace bsmpm
           keep[condition.first_segment % n] = true;
           keep[condition.end_segment % n]   = true;
         }
-    const double                                  cos_30 = std::sqrt(3.) / 2;
-    std::vector<std::tuple<double, unsigned int>> candidates;
+    const double cos_30 = std::sqrt(3.) / 2;
+    // The most crowded first, by lengths rounded to 1e-10 h: a homogeneous
+    // deformation leaves the segments equally long but for round-off, and
+    // round-off (that of the number of processes, say) must not decide
+    // which points go and so how many; equal lengths go in the order of
+    // the points.
+    std::vector<std::tuple<long long, unsigned int>> candidates;
     if (!curve.closed || n > 4)
       for (unsigned int k = 0; k < n; ++k)
         {
@@ -115,7 +120,7 @@ namespace bsmpm
           if (length[s] < remove_below * h &&
               length[s] * stretch_before_split < start_length[s] &&
               merged < insert_above * h)
-            candidates.emplace_back(length[s], k);
+            candidates.emplace_back(std::llround(length[s] / (1e-10 * h)), k);
         }
     std::sort(candidates.begin(), candidates.end());
     std::vector<bool> removed(n, false);
