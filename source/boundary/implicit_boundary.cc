@@ -524,11 +524,21 @@ namespace bsmpm
                   if (tangent == nullptr)
                     continue;
                   // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
-                  // latter D_E A(f) : G_j (second derivatives commute),
-                  // by central differences along E.
+                  // latter D_E A(f) : G_j (second derivatives commute), by
+                  // central differences along E. That part is of the order
+                  // of E, the support's mismatch over the band width: where
+                  // the mismatch is a sizeable part of the cell (the first
+                  // iterations of a step that imposes a large displacement:
+                  // |E| delta / h about 1 at the start of a 30 %
+                  // compression in one step), it made the first correction
+                  // some 25 times too long (8 m for an imposed 0.27 m),
+                  // inverting points, and the step was cut three times.
+                  // So it joins the tangent only once the mismatch is below
+                  // 1e-2 h, where it keeps Newton quadratic
+                  // (doc/finite-strain.md, "Supports in finite strain").
                   Tensor<4, 2> dA_E;
                   const double size = E.norm();
-                  if (size > 0)
+                  if (size > 0 && size * relative_band_width <= 1e-2)
                     {
                       const double h = 1e-5 / size;
                       Tensor<2, 2> P_other;
