@@ -69,7 +69,8 @@ namespace bsmpm
       "(fixed) or w - (1 - D)(w.n) n (roller), band terms k2 + k2^T + k3 "
       "added to the regular stiffness: O(delta) errors. paper: as frame, "
       "but rollers by the band strain of eqs. 22-26 with the rotation "
-      "J_T.");
+      "J_T. frame and paper are small-strain forms: refused with "
+      "Material/Kinematics = finite strain.");
     prm.leave_subsection();
   }
 
