@@ -286,8 +286,15 @@ def main():
             worst = max(worst, error)
             pointless = summary.get("quantities", summary).get(
                 "cut_cells_pointless", 0)
+            # Newton iterations of the accepted attempts, and load steps
+            # cut.
+            newton = sum(len(step.get("newton_residuals", [0])) - 1
+                         for step in summary.get("steps", []))
+            cuts = sum(step.get("increments", 1) - 1
+                       for step in summary.get("steps", []))
             print(f"{name}: stress error {error:7.1e} "
-                  f"(pointless cut cells at the end {pointless:g})",
+                  f"(pointless cut cells at the end {pointless:g}, "
+                  f"Newton iterations {newton}, cuts {cuts})",
                   flush=True)
             if not error <= BOUND:
                 failures.append(f"{name}: stress error {error:.2e} > "
