@@ -257,7 +257,10 @@ namespace bsmpm
      * with the points' mean state complete them: the exact area at the
      * exact centroid, minus the points' weight at their centroid. Then the
      * force of a homogeneous deformation is that of the exact geometry, as
-     * in the linear path (doc/cut-cells.md, doc/finite-strain.md).
+     * in the linear path (doc/cut-cells.md, doc/finite-strain.md). A cell
+     * with a single point is integrated instead by four points of its
+     * exact moments with that point's state (a one-point rule would leave
+     * the cell's hourglass modes without stiffness).
      *
      * With @p band (small strain), the quadrature points of an implicit
      * boundary band in the cell: the band's terms (ImplicitBoundary) replace
