@@ -251,12 +251,7 @@ namespace bsmpm
                           f,
                           P,
                           A))
-                {
-                  // An inverted boundary: Newton cuts the step.
-                  for (auto &v : cell_force)
-                    v = std::numeric_limits<double>::quiet_NaN();
-                  continue;
-                }
+                continue; // inverted: reported by @p stress to the solver
               // The nominal traction P n on the curve of the step's start.
               const Tensor<1, 2> traction_n = project(P * nv);
               for (unsigned int i = 0; i < n; ++i)

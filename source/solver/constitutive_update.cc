@@ -123,6 +123,28 @@ namespace bsmpm
       return Tensor<1, 3>({t[0][0], t[1][1], (t[0][1] + t[1][0]) / 2});
     }
 
+    /**
+     * Four points, a quarter of the area v each, at (c_s +- r_s, c_t +-
+     * r_t), c the centroid of @p m and r_s^2 = vss / v - c_s^2,
+     * r_t^2 = vtt / v - c_t^2 the variances of s and t over it: they
+     * integrate 1, s, t, s^2 and t^2 exactly, so a constant tangent gives
+     * the cell a stiffness that holds every deformation mode (the exact
+     * moments of the linear path do the same).
+     */
+    std::array<Point<2>, 4>
+    exact_four_point_rule(const CellMoments &m)
+    {
+      const Point<2> c(m.vs / m.v, m.vt / m.v);
+      const double   r_s = std::sqrt(std::max(0., m.vss / m.v - c[0] * c[0]));
+      const double   r_t = std::sqrt(std::max(0., m.vtt / m.v - c[1] * c[1]));
+      std::array<Point<2>, 4> rule;
+      unsigned int            q = 0;
+      for (const double a : {-1., 1.})
+        for (const double b : {-1., 1.})
+          rule[q++] = Point<2>(c[0] + a * r_s, c[1] + b * r_t);
+      return rule;
+    }
+
     const auto log_of     = [](const double x) { return std::log(x); };
     const auto inverse_of = [](const double x) { return 1. / x; };
     const auto exp_of     = [](const double x) { return std::exp(x); };
@@ -278,6 +300,11 @@ namespace bsmpm
         // at the centroid stands for the cell.
         const Tensor<2, 2> f =
           unit_symmetric_tensor<2>() + kernel.gradient(d, strain.centroid);
+        if (!(determinant(f) > 0))
+          {
+            strain.inverted = true;
+            return strain;
+          }
         strain.log_det_centroid    = std::log(determinant(f));
         const Tensor<2, 2> f_inv_T = transpose(invert(f));
         for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
@@ -478,6 +505,17 @@ namespace bsmpm
       point_kinematics == Kinematics::small_strain && model.symmetric_tangent();
     K = 0;
     f = 0;
+    // An inverted point has no stress: f NaN, which assemble() leaves out
+    // (element by element: in Debug, Vector's operator= refuses a NaN).
+    const auto mark_inverted = [&f]() {
+      for (auto &v : f)
+        v = std::numeric_limits<double>::quiet_NaN();
+    };
+    if (strain.inverted)
+      {
+        mark_inverted();
+        return 0;
+      }
     // Adds the point at @p st with properties @p props and weight @p w;
     // false if it is inverted (f is then NaN).
     // With @p elastic, the point responds with the elastic stiffness
@@ -528,11 +566,7 @@ namespace bsmpm
         finite_strain_trial(kernel, strain, st, props, d, nullptr, state);
       if (!(kin.det_f > 0))
         {
-          // An inverted point: no finite residual, so Newton cuts the step.
-          // (Element by element: in Debug, Vector's operator= refuses a
-          // NaN.)
-          for (auto &v : f)
-            v = std::numeric_limits<double>::quiet_NaN();
+          mark_inverted();
           return false;
         }
       const auto response = model.update(state);
@@ -588,6 +622,40 @@ namespace bsmpm
         }
       return true;
     };
+
+    // One point in a cell (one point per cell, or a cut cell the body has
+    // just entered): a one-point rule holds none of the cell's hourglass
+    // modes (their strain vanishes at the point), so Newton's tangent is
+    // singular and the curves' tracking points, which the hourglass modes
+    // move, wander (doc/finite-strain.md). With the cell's exact moments
+    // the cell is integrated instead by the four points of the rule of
+    // exact_four_point_rule() with the one point's state: exact for a
+    // homogeneous state (the integrand is affine), and their tangent
+    // holds every deformation mode of the cell.
+    const PointView *single = nullptr;
+    if (completes_moments() && exact_moments != nullptr && exact_moments->v > 0)
+      for (const auto &point : cell_points)
+        {
+          const double w = point.props[Property::weight];
+          if (point.props[Property::volume] == 0. || w == 0.)
+            continue;
+          single = single == nullptr ? &point : nullptr;
+          if (single == nullptr)
+            break;
+        }
+    if (single != nullptr)
+      {
+        const auto rule = exact_four_point_rule(*exact_moments);
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          // The point yields if its state yields at the first of them.
+          if (!add_point(rule[q], single->props, exact_moments->v / 4, q == 0))
+            return n_yielded;
+        if (symmetric)
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < i; ++j)
+              K(i, j) = K(j, i);
+        return n_yielded;
+      }
 
     // The points, and the sums of their weights and first moments.
     double W = 0, Ws = 0, Wt = 0;
@@ -677,7 +745,7 @@ namespace bsmpm
 
 
 
-  unsigned long long
+  ConstitutiveUpdate::AssemblyCount
   ConstitutiveUpdate::assemble(
     const MaterialPoints                             &points,
     const BackgroundGrid                             &grid,
@@ -697,7 +765,20 @@ namespace bsmpm
     Q1CellKernel::LocalVector            d;
     std::vector<PointView>               views;
     std::vector<double>                  borrowed;
-    unsigned long long                   n_yielded = 0;
+    AssemblyCount                        count;
+    // A cell whose force is not finite (an inverted point) is counted and
+    // left out: the caller then knows the increment is inadmissible, and
+    // the system holds no NaN.
+    const auto add_cell = [&]() {
+      for (const double v : cell_vector)
+        if (!std::isfinite(v))
+          {
+            ++count.inverted_cells;
+            return;
+          }
+      constraints.distribute_local_to_global(
+        cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+    };
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
@@ -707,15 +788,12 @@ namespace bsmpm
             !points.holds_material(cell))
           {
             // A cell of the body without points (a sliver the boundary has
-            // just entered, the part of the top row above the points): four
-            // points with the state of the neighbourhood, a quarter of the
-            // exact area each at (c_s +- r_s, c_t +- r_t), c the exact
-            // centroid and r_s^2, r_t^2 the variances of s and t over the
-            // cell's part in the body. They integrate 1, s, t, s^2, t^2
-            // exactly (the tangent of a constant D holds every deformation
-            // mode of the cell, as the exact moments of the linear path
-            // do), and a homogeneous state stays exact (SystemAssembly
-            // leaves such cells to us).
+            // just entered, the part of the top row above the points): the
+            // four points of exact_four_point_rule() with the state of the
+            // neighbourhood. Their tangent holds every deformation mode of
+            // the cell (as the exact moments of the linear path do), and a
+            // homogeneous state stays exact (SystemAssembly leaves such
+            // cells to us).
             const CellMoments *m =
               completes_moments() ?
                 &(*exact_moments)[cell->active_cell_index()] :
@@ -726,25 +804,17 @@ namespace bsmpm
             if (borrowed.empty())
               continue;
             borrowed[Property::weight] = m->v / 4;
-            const Point<2> c(m->vs / m->v, m->vt / m->v);
-            const double   r_s =
-              std::sqrt(std::max(0., m->vss / m->v - c[0] * c[0]));
-            const double r_t =
-              std::sqrt(std::max(0., m->vtt / m->v - c[1] * c[1]));
             const ArrayView<const double> state(borrowed.data(),
                                                 borrowed.size());
             views.clear();
-            for (const double a : {-1., 1.})
-              for (const double b : {-1., 1.})
-                views.push_back(
-                  {Point<2>(c[0] + a * r_s, c[1] + b * r_t), state});
+            for (const Point<2> &st : exact_four_point_rule(*m))
+              views.push_back({st, state});
             d = MaterialPoints::cell_increment(cell,
                                                increment,
                                                prescribed,
                                                dof_indices);
             cell_system(kernel, views, d, cell_matrix, cell_vector);
-            constraints.distribute_local_to_global(
-              cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+            add_cell();
             continue;
           }
         d = MaterialPoints::cell_increment(cell,
@@ -756,7 +826,7 @@ namespace bsmpm
           bands != nullptr && !(*bands)[cell->active_cell_index()].empty() ?
             &(*bands)[cell->active_cell_index()] :
             nullptr;
-        n_yielded +=
+        count.yielded +=
           cell_system(kernel,
                       views,
                       d,
@@ -766,10 +836,9 @@ namespace bsmpm
                         &(*exact_moments)[cell->active_cell_index()] :
                         nullptr,
                       band);
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+        add_cell();
       }
-    return n_yielded;
+    return count;
   }
 
 

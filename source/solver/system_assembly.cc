@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -516,7 +517,7 @@ namespace bsmpm
     newton_residual.sadd(-1., 1., system_rhs);
     TrilinosWrappers::MPI::Vector internal_force(newton_residual);
     internal_force = 0;
-    yielding =
+    const ConstitutiveUpdate::AssemblyCount count =
       update.assemble(points,
                       grid,
                       *cell_kernel,
@@ -526,6 +527,10 @@ namespace bsmpm
                       tangent_matrix,
                       internal_force,
                       support_bands.empty() ? nullptr : &support_bands);
+    yielding = count.yielded;
+    // Cells or support points that the increment inverts (finite strain)
+    // are left out of the system: such an increment has no residual.
+    unsigned long long inverted = count.inverted_cells;
     // Contact forces are loads that depend on the increment: they join the
     // residual with the sign of the loads and their derivative the tangent.
     TrilinosWrappers::MPI::Vector contact_force;
@@ -549,11 +554,11 @@ namespace bsmpm
     if (finite_strain)
       {
         support_force.reinit(newton_residual);
-        add_finite_strain_support_terms(update,
-                                        increment,
-                                        system_constraints,
-                                        &tangent_matrix,
-                                        support_force);
+        inverted += add_finite_strain_support_terms(update,
+                                                    increment,
+                                                    system_constraints,
+                                                    &tangent_matrix,
+                                                    support_force);
         support_force.compress(VectorOperation::add);
         // The share of the curves whose reactions are asked for, without
         // constraints (support_forces()).
@@ -582,11 +587,16 @@ namespace bsmpm
     if (contact != nullptr)
       newton_residual += contact_force;
     yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
+    // An increment that inverts a point is no admissible state: its |R| is
+    // infinite, and Newton's line search takes a shorter step (or, at the
+    // start of an increment, the load increment is cut).
+    if (Utilities::MPI::sum(inverted, grid.mpi_communicator()) > 0)
+      return std::numeric_limits<double>::infinity();
     return newton_residual.l2_norm();
   }
 
 
-  void
+  unsigned long long
   SystemAssembly::add_finite_strain_support_terms(
     const ConstitutiveUpdate                         &update,
     const LinearAlgebra::distributed::Vector<double> &increment,
@@ -595,12 +605,18 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector                    &force,
     const BoundaryCurve                              *only) const
   {
-    const SupportStress stress = [&update](const ArrayView<const double> &props,
-                                           const Tensor<2, 2>            &f,
-                                           Tensor<2, 2>                  &P,
-                                           Tensor<4, 2>                  &A) {
-      return update.first_piola_stress(props, f, P, A);
-    };
+    // The supports leave out a point that the increment inverts; counted
+    // here, so that newton_system() rejects the increment.
+    unsigned long long  inverted = 0;
+    const SupportStress stress =
+      [&update, &inverted](const ArrayView<const double> &props,
+                           const Tensor<2, 2>            &f,
+                           Tensor<2, 2>                  &P,
+                           Tensor<4, 2>                  &A) {
+        const bool admissible = update.first_piola_stress(props, f, P, A);
+        inverted += !admissible;
+        return admissible;
+      };
     const auto uses = [&](const BoundaryCurve::DirichletMethod method) {
       return only != nullptr ? only->dirichlet_method == method :
                                parts.curves.has_supports(method);
@@ -625,6 +641,7 @@ namespace bsmpm
                                                      tangent,
                                                      force,
                                                      only);
+    return inverted;
   }
 
 

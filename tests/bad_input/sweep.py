@@ -64,6 +64,7 @@ SQUARE45 = os.path.join(PRM, "square-compression-45.prm")
 CYLINDER = os.path.join(PRM, "thick-cylinder.prm")
 PLATE = os.path.join(PRM, "plate-with-hole-neumann.prm")
 CANTILEVER = os.path.join(PRM, "cantilever.prm")
+CANTILEVER_FINITE = os.path.join(PRM, "cantilever-finite-strain.prm")
 FOOTING = os.path.join(PRM, "strip-footing.prm")
 
 # Every run of a scene: output into the case's own directory, no ParaView
@@ -498,6 +499,15 @@ case("edge_of_rectangle_on_sector", "curve",
      CYLINDER_SMALL + s("Boundary curves/Curve 2/Edge=top"),
      "Boundary curves/Curve 2/Edge: the body region (Shape = annulus sector) "
      "has no edge 'top'")
+
+# The frame and paper forms of the implicit boundary method keep the
+# small-strain band terms: refused in finite strain (issue 26, item 3).
+for form in ("frame", "paper"):
+    case(f"implicit_boundary_{form}_in_finite_strain", "curve",
+         [CANTILEVER_FINITE] + s("Loading/Load steps=1") +
+         s(f"Implicit boundary/Formulation={form}"),
+         f"Implicit boundary/Formulation = {form} keeps the small-strain "
+         "band terms")
 
 # --- angles ----------------------------------------------------------------
 # An angle beyond a full turn is refused, not taken modulo 360.

@@ -18,7 +18,9 @@ namespace bsmpm
    * a material point (BoundaryCurve::state_at()), the relative deformation
    * gradient f of the step; results: the first Piola stress P of the
    * configuration at the step's start and A = dP/df. Returns false if
-   * det f <= 0.
+   * det f <= 0: the support then leaves the point out, and the solver,
+   * which counts such points in the function it gives, rejects the
+   * increment (SystemAssembly::newton_system()).
    */
   using SupportStress = std::function<bool(const ArrayView<const double> &,
                                            const Tensor<2, 2> &,

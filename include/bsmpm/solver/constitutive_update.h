@@ -159,15 +159,31 @@ namespace bsmpm
              point_kinematics == Kinematics::finite_strain;
     }
 
+    /** What assemble() found, on this process. */
+    struct AssemblyCount
+    {
+      /** Locally owned points with volume that yield. */
+      unsigned long long yielded = 0;
+      /**
+       * Cells left out because the increment inverts one of their points
+       * (det f <= 0, finite strain): the increment is no admissible state,
+       * it has no finite residual, and the Newton iteration must take a
+       * shorter step (SystemAssembly::newton_system() then returns an
+       * infinite |R|, which the line search backs away from).
+       */
+      unsigned long long inverted_cells = 0;
+    };
+
     /**
      * Adds K_T to @p tangent and f_int to @p internal_force for the
      * increment @p increment (with ghost values) and, if given, the
      * prescribed nodal values @p prescribed, through @p constraints.
-     * Neither is compressed. Returns the number of locally owned points with
-     * volume that yield. With @p bands, the tangent of a cell crossed by a
-     * support's band is stiffened there (cell_system()).
+     * Neither is compressed. A cell whose points the increment inverts adds
+     * nothing and is counted instead (never a NaN in the system). With
+     * @p bands, the tangent of a cell crossed by a support's band is
+     * stiffened there (cell_system()).
      */
-    unsigned long long
+    AssemblyCount
     assemble(const MaterialPoints                             &points,
              const BackgroundGrid                             &grid,
              const Q1CellKernel                               &kernel,
@@ -230,7 +246,10 @@ namespace bsmpm
      * The internal force (minus the body force in finite strain) @p f and
      * the tangent @p K (both set, not added to) of the points @p cell_points
      * of one cell for the local increment @p d. Returns how many points
-     * with volume yield. Used by assemble(); public for the tests.
+     * with volume yield. If the increment inverts a point of the cell
+     * (det f <= 0 in finite strain, at a point or, with F-bar, at the
+     * centroid), @p f is NaN (the caller must not assemble it: see
+     * assemble()). Used by assemble(); public for the tests.
      *
      * With the cell's exact moments @p exact_moments (and quadrature
      * weights), where the points' weights miss its area or first moments
@@ -238,7 +257,10 @@ namespace bsmpm
      * with the points' mean state complete them: the exact area at the
      * exact centroid, minus the points' weight at their centroid. Then the
      * force of a homogeneous deformation is that of the exact geometry, as
-     * in the linear path (doc/cut-cells.md, doc/finite-strain.md).
+     * in the linear path (doc/cut-cells.md, doc/finite-strain.md). A cell
+     * with a single point is integrated instead by four points of its
+     * exact moments with that point's state (a one-point rule would leave
+     * the cell's hourglass modes without stiffness).
      *
      * With @p band (small strain), the quadrature points of an implicit
      * boundary band in the cell: the band's terms (ImplicitBoundary) replace
@@ -296,6 +318,8 @@ namespace bsmpm
        * shape functions there. */
       double                      log_det_centroid = 0;
       std::array<Tensor<1, 2>, 8> centroid_gradients;
+      /** F-bar: the increment inverts the cell at the centroid. */
+      bool inverted = false;
     };
 
     /** The strain of the cell's points; with B-bar its mean volumetric

@@ -115,7 +115,10 @@ namespace bsmpm
      * K_T = K + K_m and residual R = r - K x - f_int, with K and r the
      * linear system of the boundaries, loads and stabilisation and K_m,
      * f_int the material's, from @p update (see ConstitutiveUpdate).
-     * Returns |R|.
+     * Returns |R|, or infinity if the increment inverts a material point
+     * or a support's point (finite strain; those cells and points are left
+     * out of the system, which holds no NaN): an inadmissible iterate,
+     * from which the line search backs away.
      */
     double
     newton_system(const ConstitutiveUpdate                         &update,
@@ -351,8 +354,9 @@ namespace bsmpm
      * the increment @p increment (ImplicitBoundary and NitscheBoundary::
      * add_finite_strain_terms()) of all curves, or of @p only, as internal
      * forces into @p force and, unless nullptr, their derivative into
-     * @p tangent. */
-    void
+     * @p tangent. Returns how many of the supports' points the increment
+     * inverts (left out). */
+    unsigned long long
     add_finite_strain_support_terms(
       const ConstitutiveUpdate                         &update,
       const LinearAlgebra::distributed::Vector<double> &increment,
