@@ -220,15 +220,14 @@ namespace bsmpm
   ConstitutiveUpdate::voigt_tangent(const SymmetricTensor<4, 3> &tangent)
   {
     // sigma_ij = T_ijkl eps_kl; the engineering shear gamma = 2 eps_xy
-    // takes both T_ij01 and T_ij10 = T_ij01.
-    static constexpr unsigned int index[4][2] = {{0, 0},
-                                                 {1, 1},
-                                                 {2, 2},
-                                                 {0, 1}};
-    Tensor<2, 4>                  D;
+    // takes both T_ij01 and T_ij10 = T_ij01. deal.II stores T as the 6x6
+    // table of the pairs (00, 11, 22, 01, 02, 12), whose first four are
+    // (xx, yy, zz, xy): read it directly (the chained [i][j][k][l] looks
+    // every entry up by its indices).
+    Tensor<2, 4> D;
     for (unsigned int r = 0; r < 4; ++r)
       for (unsigned int c = 0; c < 4; ++c)
-        D[r][c] = tangent[index[r][0]][index[r][1]][index[c][0]][index[c][1]];
+        D[r][c] = tangent.access_raw_entry(6 * r + c);
     return D;
   }
 
@@ -509,9 +508,18 @@ namespace bsmpm
     // point. A point costs its return map and these sums (6 x 16 + 3 x 4
     // products) instead of the 8 x 4 products D Bbar and 36 entries
     // Bbar^T (D Bbar). H_ab is stored for a <= b in the order (1, 1),
-    // (1, s), (1, t), (s, s), (s, t), (t, t).
-    double H[6][16] = {};
-    double S[3][4]  = {};
+    // (1, s), (1, t), (s, s), (s, t), (t, t). Points that respond
+    // elastically share D_e: they add to the scalar moments
+    // M_ab = sum_p w_p m_a m_b alone, and the cell to H_ab + M_ab D_e, as
+    // the linear kernel's moments do (a cell whose points all stay elastic
+    // costs their return maps and six sums each).
+    double             H[6][16] = {};
+    double             M[6]     = {};
+    double             S[3][4]  = {};
+    bool               plastic  = false;
+    const bool         small    = point_kinematics == Kinematics::small_strain;
+    const Tensor<2, 4> D_e =
+      small ? voigt_tangent(model.elastic_tangent()) : Tensor<2, 4>();
     // Adds the point at @p st with properties @p props and weight @p w;
     // false if it is inverted (f is then NaN).
     // With @p elastic, the point responds with the elastic stiffness
@@ -538,23 +546,32 @@ namespace bsmpm
           else
             response = respond(props, de, state);
           n_yielded += count && response.yielded;
-          const double       sigma[4] = {response.stress[0][0],
-                                         response.stress[1][1],
-                                         response.stress[2][2],
-                                         response.stress[0][1]};
-          const Tensor<2, 4> D        = voigt_tangent(response.tangent);
+          const double sigma[4] = {response.stress[0][0],
+                                   response.stress[1][1],
+                                   response.stress[2][2],
+                                   response.stress[0][1]};
+          const double ws = w * st[0], wt = w * st[1];
+          const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int r = 0; r < 4; ++r)
+              S[a][r] += m[a] * sigma[r];
+          // A step that did not yield has the elastic tangent
+          // (ConstitutiveResponse::yielded).
+          if (elastic || !response.yielded)
+            {
+              for (unsigned int q = 0; q < 6; ++q)
+                M[q] += m[q];
+              return true;
+            }
+          plastic              = true;
+          const Tensor<2, 4> D = voigt_tangent(response.tangent);
           double             D_flat[16];
           for (unsigned int r = 0; r < 4; ++r)
             for (unsigned int c = 0; c < 4; ++c)
               D_flat[4 * r + c] = D[r][c];
-          const double ws = w * st[0], wt = w * st[1];
-          const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
           for (unsigned int q = 0; q < 6; ++q)
             for (unsigned int k = 0; k < 16; ++k)
               H[q][k] += m[q] * D_flat[k];
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int r = 0; r < 4; ++r)
-              S[a][r] += m[a] * sigma[r];
           return true;
         }
 
@@ -703,9 +720,10 @@ namespace bsmpm
           }
       }
 
-    if (point_kinematics == Kinematics::small_strain)
+    if (small)
       {
-        // K and f from the sums (see H above): G_a,j = sum_b H_ab P_b,j,
+        // K and f from the sums (see H above):
+        // G_a,j = sum_b (H_ab P_b,j + M_ab D_e P_b,j),
         // K_ij = sum_a P_a,i^T G_a,j; for a symmetric tangent the upper
         // triangle, mirrored below.
         static constexpr unsigned int block[3][3] = {{0, 1, 2},
@@ -713,16 +731,25 @@ namespace bsmpm
                                                      {2, 4, 5}};
         const auto                   &P           = strain.columns;
         double                        G[3][n][4]  = {};
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int b = 0; b < 3; ++b)
+        for (unsigned int b = 0; b < 3; ++b)
+          for (unsigned int j = 0; j < n; ++j)
             {
-              const double *h = H[block[a][b]];
-              for (unsigned int j = 0; j < n; ++j)
+              const Tensor<1, 4> DP = D_e * P[b][j];
+              for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int r = 0; r < 4; ++r)
-                  G[a][j][r] +=
-                    h[4 * r] * P[b][j][0] + h[4 * r + 1] * P[b][j][1] +
-                    h[4 * r + 2] * P[b][j][2] + h[4 * r + 3] * P[b][j][3];
+                  G[a][j][r] += M[block[a][b]] * DP[r];
             }
+        if (plastic)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              {
+                const double *h = H[block[a][b]];
+                for (unsigned int j = 0; j < n; ++j)
+                  for (unsigned int r = 0; r < 4; ++r)
+                    G[a][j][r] +=
+                      h[4 * r] * P[b][j][0] + h[4 * r + 1] * P[b][j][1] +
+                      h[4 * r + 2] * P[b][j][2] + h[4 * r + 3] * P[b][j][3];
+              }
         for (unsigned int i = 0; i < n; ++i)
           {
             double force = 0;
@@ -776,8 +803,14 @@ namespace bsmpm
       {
         if (!cell->is_locally_owned())
           continue;
-        if (particles.n_particles_in_cell(cell) == 0 ||
-            !points.holds_material(cell))
+        // The points once (MaterialPoints::holds_material() would walk
+        // them again).
+        views.clear();
+        if (particles.n_particles_in_cell(cell) > 0)
+          gather_points(particles.particles_in_cell(cell), views);
+        if (std::none_of(views.begin(), views.end(), [](const auto &point) {
+              return point.props[Property::volume] > 0;
+            }))
           {
             // A cell of the body without points (a sliver the boundary has
             // just entered, the part of the top row above the points): four
@@ -829,7 +862,6 @@ namespace bsmpm
                                            increment,
                                            prescribed,
                                            dof_indices);
-        gather_points(particles.particles_in_cell(cell), views);
         const auto *band =
           bands != nullptr && !(*bands)[cell->active_cell_index()].empty() ?
             &(*bands)[cell->active_cell_index()] :
