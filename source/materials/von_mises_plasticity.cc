@@ -77,7 +77,9 @@ namespace bsmpm
     ConstitutiveResponse response;
     if (!(f_tr > 0.))
       {
-        response.stress  = elastic_stress(eps_tr);
+        // elastic_stress(eps_tr) with the deviator at hand.
+        response.stress =
+          kappa * trace(eps_tr) * unit_symmetric_tensor<3>() + 2. * mu * e_tr;
         response.tangent = isotropic_stiffness();
         return response;
       }
