@@ -35,8 +35,11 @@ namespace bsmpm
                                           const double                 b,
                                           const SymmetricTensor<2, 3> &n)
   {
-    const unsigned int ij[6][2] = {
-      {0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+    // On the stored entries: deal.II keeps a symmetric 3x3 tensor as
+    // (00, 11, 22, 01, 02, 12) and a rank-4 one as the 6x6 table of these
+    // pairs, T_ijkl at (ij, kl). The chained t[i][j][k][l] looks each
+    // entry up by its indices, which made this a tenth of the plastic
+    // footing's Newton system; the values are the same.
     for (unsigned int c = 0; c < 6; ++c)
       for (unsigned int d = 0; d < 6; ++d)
         {
@@ -47,8 +50,8 @@ namespace bsmpm
                                       (c == d ? 2. / 3. : -1. / 3.) :
                                     c == d ? 0.5 :
                                              0.;
-          t[ij[c][0]][ij[c][1]][ij[d][0]][ij[d][1]] +=
-            a * deviatoric + b * n[ij[c][0]][ij[c][1]] * n[ij[d][0]][ij[d][1]];
+          t.access_raw_entry(6 * c + d) +=
+            a * deviatoric + b * n.access_raw_entry(c) * n.access_raw_entry(d);
         }
   }
 

@@ -242,15 +242,14 @@ namespace bsmpm
   ConstitutiveUpdate::voigt_tangent(const SymmetricTensor<4, 3> &tangent)
   {
     // sigma_ij = T_ijkl eps_kl; the engineering shear gamma = 2 eps_xy
-    // takes both T_ij01 and T_ij10 = T_ij01.
-    static constexpr unsigned int index[4][2] = {{0, 0},
-                                                 {1, 1},
-                                                 {2, 2},
-                                                 {0, 1}};
-    Tensor<2, 4>                  D;
+    // takes both T_ij01 and T_ij10 = T_ij01. deal.II stores T as the 6x6
+    // table of the pairs (00, 11, 22, 01, 02, 12), whose first four are
+    // (xx, yy, zz, xy): read it directly (the chained [i][j][k][l] looks
+    // every entry up by its indices).
+    Tensor<2, 4> D;
     for (unsigned int r = 0; r < 4; ++r)
       for (unsigned int c = 0; c < 4; ++c)
-        D[r][c] = tangent[index[r][0]][index[r][1]][index[c][0]][index[c][1]];
+        D[r][c] = tangent.access_raw_entry(6 * r + c);
     return D;
   }
 
@@ -265,8 +264,47 @@ namespace bsmpm
     CellStrain strain;
     strain.coefficients = kernel.strain_coefficients(d);
     strain.use_b_bar    = false;
-    if (!b_bar)
-      return strain;
+    if (b_bar)
+      centroid_strain(kernel, cell_points, d, exact_moments, strain);
+    if (point_kinematics == Kinematics::small_strain)
+      {
+        // B-bar columns: B_i + (theta_i(centroid) - theta_i(s, t)) / 3
+        // (1, 1, 1, 0), each part affine in (s, t).
+        for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+          {
+            const std::array<Voigt, 3> parts = kernel.strain_column_parts(i);
+            for (unsigned int a = 0; a < 3; ++a)
+              {
+                double shift = 0;
+                if (strain.use_b_bar)
+                  shift = ((a == 0 ? strain.centroid_volumetric[i] : 0.) -
+                           parts[a][0] - parts[a][1]) /
+                          3;
+                strain.columns[a][i] = Tensor<1, 4>({parts[a][0] + shift,
+                                                     parts[a][1] + shift,
+                                                     shift,
+                                                     parts[a][2]});
+              }
+          }
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            strain.increment[a] = Tensor<1, 4>();
+            for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+              strain.increment[a] += d[i] * strain.columns[a][i];
+          }
+      }
+    return strain;
+  }
+
+
+
+  void
+  ConstitutiveUpdate::centroid_strain(const Q1CellKernel           &kernel,
+                                      const std::vector<PointView> &cell_points,
+                                      const Q1CellKernel::LocalVector &d,
+                                      const CellMoments *exact_moments,
+                                      CellStrain        &strain) const
+  {
     // The volumetric strain of Q1 is affine in the cell, so its mean over
     // the points is its value at their volume-weighted centroid.
     double v = 0, vs = 0, vt = 0;
@@ -278,7 +316,7 @@ namespace bsmpm
         vt += volume * point.st[1];
       }
     if (v == 0.)
-      return strain;
+      return;
     strain.use_b_bar = true;
     strain.centroid  = Point<2>(vs / v, vt / v);
     // With the cut-cell quadrature the cell is integrated over its exact
@@ -303,7 +341,7 @@ namespace bsmpm
         if (!(determinant(f) > 0))
           {
             strain.inverted = true;
-            return strain;
+            return;
           }
         strain.log_det_centroid    = std::log(determinant(f));
         const Tensor<2, 2> f_inv_T = transpose(invert(f));
@@ -311,7 +349,6 @@ namespace bsmpm
           strain.centroid_gradients[i] =
             f_inv_T * kernel.scalar_gradient(i, strain.centroid);
       }
-    return strain;
   }
 
 
@@ -335,23 +372,6 @@ namespace bsmpm
         B_bar[i] =
           Tensor<1, 4>({B[i][0] + shift, B[i][1] + shift, shift, B[i][2]});
       }
-  }
-
-
-
-  Tensor<1, 4>
-  ConstitutiveUpdate::strain_increment(const Q1CellKernel              &kernel,
-                                       const CellStrain                &strain,
-                                       const Point<2>                  &st,
-                                       const Q1CellKernel::LocalVector &d,
-                                       std::array<Voigt, 8>            &B,
-                                       std::array<Tensor<1, 4>, 8>     &B_bar)
-  {
-    strain_columns(kernel, strain, st, B, B_bar);
-    Tensor<1, 4> de;
-    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-      de += d[i] * B_bar[i];
-    return de;
   }
 
 
@@ -496,8 +516,6 @@ namespace bsmpm
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const CellStrain       strain =
       cell_strain(kernel, cell_points, d, exact_moments);
-    std::array<Voigt, n>        B;
-    std::array<Tensor<1, 4>, n> B_bar, DB_bar;
     std::array<Tensor<1, 2>, n> tau_g;
     ConstitutiveState           state;
     unsigned int                n_yielded = 0;
@@ -516,6 +534,30 @@ namespace bsmpm
         mark_inverted();
         return 0;
       }
+    // Small strain: the strain columns are affine in the cell,
+    // Bbar_i(s, t) = sum_a m_a P_a,i with m = (1, s, t), so the points
+    // enter K = sum_p w_p Bbar_p^T D_p Bbar_p and f = sum_p w_p Bbar_p^T
+    // sigma_p only through the sums
+    //
+    //   H_ab = sum_p w_p m_a m_b D_p,   S_a = sum_p w_p m_a sigma_p,
+    //
+    // K_ij = sum_ab P_a,i^T H_ab P_b,j, f_i = sum_a P_a,i^T S_a: the
+    // moment sums of the linear kernel (Q1CellKernel) with a modulus per
+    // point. A point costs its return map and these sums (6 x 16 + 3 x 4
+    // products) instead of the 8 x 4 products D Bbar and 36 entries
+    // Bbar^T (D Bbar). H_ab is stored for a <= b in the order (1, 1),
+    // (1, s), (1, t), (s, s), (s, t), (t, t). Points that respond
+    // elastically share D_e: they add to the scalar moments
+    // M_ab = sum_p w_p m_a m_b alone, and the cell to H_ab + M_ab D_e, as
+    // the linear kernel's moments do (a cell whose points all stay elastic
+    // costs their return maps and six sums each).
+    double             H[6][16] = {};
+    double             M[6]     = {};
+    double             S[3][4]  = {};
+    bool               plastic  = false;
+    const bool         small    = point_kinematics == Kinematics::small_strain;
+    const Tensor<2, 4> D_e =
+      small ? voigt_tangent(model.elastic_tangent()) : Tensor<2, 4>();
     // Adds the point at @p st with properties @p props and weight @p w;
     // false if it is inverted (f is then NaN).
     // With @p elastic, the point responds with the elastic stiffness
@@ -527,37 +569,50 @@ namespace bsmpm
                                const bool                     elastic = false) {
       if (point_kinematics == Kinematics::small_strain)
         {
-          const Tensor<1, 4> de =
-            strain_increment(kernel, strain, st, d, B, B_bar);
-          ConstitutiveResponse response;
-          if (elastic)
-            {
-              SymmetricTensor<2, 3> e = stored_elastic_strain(props);
-              e[0][0] += de[0];
-              e[1][1] += de[1];
-              e[2][2] += de[2];
-              e[0][1] += de[3] / 2;
-              response.tangent = model.elastic_tangent();
-              response.stress  = response.tangent * e;
-            }
-          else
-            response = respond(props, de, state);
+          const Tensor<1, 4> de = strain_increment(strain, st);
+          // Made in place: a response declared first and assigned after
+          // (43 numbers zeroed, then copied) cost as much per point as the
+          // sums below.
+          const ConstitutiveResponse response = [&]() {
+            if (!elastic)
+              return respond(props, de, state);
+            ConstitutiveResponse  r;
+            SymmetricTensor<2, 3> e = stored_elastic_strain(props);
+            e[0][0] += de[0];
+            e[1][1] += de[1];
+            e[2][2] += de[2];
+            e[0][1] += de[3] / 2;
+            r.tangent = model.elastic_tangent();
+            r.stress  = r.tangent * e;
+            return r;
+          }();
           n_yielded += count && response.yielded;
-          const Tensor<1, 4> sigma({response.stress[0][0],
-                                    response.stress[1][1],
-                                    response.stress[2][2],
-                                    response.stress[0][1]});
-          const Tensor<2, 4> D = voigt_tangent(response.tangent);
-          for (unsigned int i = 0; i < n; ++i)
-            DB_bar[i] = w * (D * B_bar[i]);
-          // A symmetric tangent gives a symmetric cell matrix: its upper
-          // triangle here, the lower one mirrored after the points.
-          for (unsigned int i = 0; i < n; ++i)
+          const double sigma[4] = {response.stress[0][0],
+                                   response.stress[1][1],
+                                   response.stress[2][2],
+                                   response.stress[0][1]};
+          const double ws = w * st[0], wt = w * st[1];
+          const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int r = 0; r < 4; ++r)
+              S[a][r] += m[a] * sigma[r];
+          // A step that did not yield has the elastic tangent
+          // (ConstitutiveResponse::yielded).
+          if (elastic || !response.yielded)
             {
-              f[i] += w * (B_bar[i] * sigma);
-              for (unsigned int j = symmetric ? i : 0; j < n; ++j)
-                K(i, j) += B_bar[i] * DB_bar[j];
+              for (unsigned int q = 0; q < 6; ++q)
+                M[q] += m[q];
+              return true;
             }
+          plastic              = true;
+          const Tensor<2, 4> D = voigt_tangent(response.tangent);
+          double             D_flat[16];
+          for (unsigned int r = 0; r < 4; ++r)
+            for (unsigned int c = 0; c < 4; ++c)
+              D_flat[4 * r + c] = D[r][c];
+          for (unsigned int q = 0; q < 6; ++q)
+            for (unsigned int k = 0; k < 16; ++k)
+              H[q][k] += m[q] * D_flat[k];
           return true;
         }
 
@@ -736,6 +791,53 @@ namespace bsmpm
           }
       }
 
+    if (small)
+      {
+        // K and f from the sums (see H above):
+        // G_a,j = sum_b (H_ab P_b,j + M_ab D_e P_b,j),
+        // K_ij = sum_a P_a,i^T G_a,j; for a symmetric tangent the upper
+        // triangle, mirrored below.
+        static constexpr unsigned int block[3][3] = {{0, 1, 2},
+                                                     {1, 3, 4},
+                                                     {2, 4, 5}};
+        const auto                   &P           = strain.columns;
+        double                        G[3][n][4]  = {};
+        for (unsigned int b = 0; b < 3; ++b)
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              const Tensor<1, 4> DP = D_e * P[b][j];
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int r = 0; r < 4; ++r)
+                  G[a][j][r] += M[block[a][b]] * DP[r];
+            }
+        if (plastic)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              {
+                const double *h = H[block[a][b]];
+                for (unsigned int j = 0; j < n; ++j)
+                  for (unsigned int r = 0; r < 4; ++r)
+                    G[a][j][r] +=
+                      h[4 * r] * P[b][j][0] + h[4 * r + 1] * P[b][j][1] +
+                      h[4 * r + 2] * P[b][j][2] + h[4 * r + 3] * P[b][j][3];
+              }
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            double force = 0;
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int r = 0; r < 4; ++r)
+                force += P[a][i][r] * S[a][r];
+            f[i] = force;
+            for (unsigned int j = symmetric ? i : 0; j < n; ++j)
+              {
+                double sum = 0;
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int r = 0; r < 4; ++r)
+                    sum += P[a][i][r] * G[a][j][r];
+                K(i, j) = sum;
+              }
+          }
+      }
     if (symmetric)
       for (unsigned int i = 0; i < n; ++i)
         for (unsigned int j = 0; j < i; ++j)
@@ -755,6 +857,7 @@ namespace bsmpm
     const AffineConstraints<double>                  &constraints,
     TrilinosWrappers::SparseMatrix                   &tangent,
     TrilinosWrappers::MPI::Vector                    &internal_force,
+    CellScatter                                      &scatter,
     const SupportBands                               *bands) const
   {
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
@@ -769,23 +872,34 @@ namespace bsmpm
     // A cell whose force is not finite (an inverted point) is counted and
     // left out: the caller then knows the increment is inadmissible, and
     // the system holds no NaN.
-    const auto add_cell = [&]() {
+    const auto add_cell = [&](const unsigned int cell_index) {
       for (const double v : cell_vector)
         if (!std::isfinite(v))
           {
             ++count.inverted_cells;
             return;
           }
-      constraints.distribute_local_to_global(
-        cell_matrix, cell_vector, dof_indices, tangent, internal_force);
+      scatter.add(cell_index,
+                  cell_matrix,
+                  cell_vector,
+                  dof_indices,
+                  constraints,
+                  tangent,
+                  internal_force);
     };
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
-        if (particles.n_particles_in_cell(cell) == 0 ||
-            !points.holds_material(cell))
+        // The points once (MaterialPoints::holds_material() would walk
+        // them again).
+        views.clear();
+        if (particles.n_particles_in_cell(cell) > 0)
+          gather_points(particles.particles_in_cell(cell), views);
+        if (std::none_of(views.begin(), views.end(), [](const auto &point) {
+              return point.props[Property::volume] > 0;
+            }))
           {
             // A cell of the body without points (a sliver the boundary has
             // just entered, the part of the top row above the points): the
@@ -814,14 +928,13 @@ namespace bsmpm
                                                prescribed,
                                                dof_indices);
             cell_system(kernel, views, d, cell_matrix, cell_vector);
-            add_cell();
+            add_cell(cell->active_cell_index());
             continue;
           }
         d = MaterialPoints::cell_increment(cell,
                                            increment,
                                            prescribed,
                                            dof_indices);
-        gather_points(particles.particles_in_cell(cell), views);
         const auto *band =
           bands != nullptr && !(*bands)[cell->active_cell_index()].empty() ?
             &(*bands)[cell->active_cell_index()] :
@@ -836,7 +949,7 @@ namespace bsmpm
                         &(*exact_moments)[cell->active_cell_index()] :
                         nullptr,
                       band);
-        add_cell();
+        add_cell(cell->active_cell_index());
       }
     return count;
   }
@@ -855,8 +968,6 @@ namespace bsmpm
     auto                                &particles = points.particle_handler();
     std::vector<types::global_dof_index> dof_indices(n);
     Q1CellKernel::LocalVector            d;
-    std::array<Voigt, n>                 B;
-    std::array<Tensor<1, 4>, n>          B_bar;
     std::vector<PointView>               views;
     ConstitutiveState                    state;
     unsigned long long                   n_yielded = 0;
@@ -917,7 +1028,7 @@ namespace bsmpm
               {
                 Tensor<1, 4> de;
                 if (has_material)
-                  de = strain_increment(kernel, strain, st, d, B, B_bar);
+                  de = strain_increment(strain, st);
                 else
                   {
                     const Voigt e = points.boundary_strain(

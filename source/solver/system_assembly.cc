@@ -100,6 +100,7 @@ namespace bsmpm
                                                grid.locally_relevant_dofs());
     support_layout_current = false;
     scatter.clear();
+    tangent_scatter.clear();
     system_matrix.clear();
     system_matrix.reinit(grid.locally_owned_dofs(),
                          grid.locally_owned_dofs(),
@@ -507,6 +508,10 @@ namespace bsmpm
     TimerOutput::Scope    t(timer, "newton system");
     const BackgroundGrid &grid = parts.grid;
     tangent_matrix.copy_from(system_matrix);
+    // copy_from() keeps the matrix object while the pattern stays.
+    if (!tangent_scatter.serves(tangent_matrix))
+      tangent_scatter.reinit(tangent_matrix,
+                             grid.triangulation().n_active_cells());
     TrilinosWrappers::MPI::Vector x(grid.locally_owned_dofs(),
                                     grid.mpi_communicator());
     for (const auto i : grid.locally_owned_dofs())
@@ -526,6 +531,7 @@ namespace bsmpm
                       system_constraints,
                       tangent_matrix,
                       internal_force,
+                      tangent_scatter,
                       support_bands.empty() ? nullptr : &support_bands);
     yielding = count.yielded;
     // Cells or support points that the increment inverts (finite strain)

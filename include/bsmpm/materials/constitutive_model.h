@@ -42,7 +42,9 @@ namespace bsmpm
     /** Algorithmic tangent d stress / d trial elastic strain (minor
      * symmetries; without major symmetry for non-associated flow). */
     SymmetricTensor<4, 3> tangent;
-    /** Whether the step returned to the yield surface. */
+    /** Whether the step returned to the yield surface. If not, the
+     * tangent is the model's elastic_tangent() (ConstitutiveUpdate sums
+     * the points that do not yield with it, as the linear kernel does). */
     bool yielded = false;
   };
 

@@ -186,6 +186,25 @@ namespace bsmpm
       return b;
     }
 
+    /**
+     * The three parts of column @p i of B(s, t) = B0 + s Bs + t Bt:
+     * column i of B0, Bs and Bt. What an assembly that sums its points'
+     * moments itself (ConstitutiveUpdate::cell_system) multiplies them
+     * with.
+     */
+    std::array<Voigt, 3>
+    strain_column_parts(const unsigned int i) const
+    {
+      std::array<Voigt, 3> parts;
+      for (unsigned int r = 0; r < 3; ++r)
+        {
+          parts[0][r] = B0[r][i];
+          parts[1][r] = Bs[r][i];
+          parts[2][r] = Bt[r][i];
+        }
+      return parts;
+    }
+
     /** K += sum_p V_p B_p^T C B_p from the moments of the cell. */
     void
     add_stiffness(const CellMoments &m, FullMatrix<double> &K) const;

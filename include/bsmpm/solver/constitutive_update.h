@@ -13,6 +13,7 @@
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
+#include <bsmpm/solver/cell_scatter.h>
 
 #include <memory>
 
@@ -178,10 +179,11 @@ namespace bsmpm
      * Adds K_T to @p tangent and f_int to @p internal_force for the
      * increment @p increment (with ghost values) and, if given, the
      * prescribed nodal values @p prescribed, through @p constraints.
-     * Neither is compressed. A cell whose points the increment inverts adds
-     * nothing and is counted instead (never a NaN in the system). With
-     * @p bands, the tangent of a cell crossed by a support's band is
-     * stiffened there (cell_system()).
+     * Neither is compressed; @p scatter serves @p tangent (see CellScatter:
+     * the cells' positions in it are kept between assemblies). A cell whose
+     * points the increment inverts adds nothing and is counted instead
+     * (never a NaN in the system). With @p bands, the tangent of a cell
+     * crossed by a support's band is stiffened there (cell_system()).
      */
     AssemblyCount
     assemble(const MaterialPoints                             &points,
@@ -192,6 +194,7 @@ namespace bsmpm
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &tangent,
              TrilinosWrappers::MPI::Vector                    &internal_force,
+             CellScatter                                      &scatter,
              const SupportBands *bands = nullptr) const;
 
     /**
@@ -320,6 +323,14 @@ namespace bsmpm
       std::array<Tensor<1, 2>, 8> centroid_gradients;
       /** F-bar: the increment inverts the cell at the centroid. */
       bool inverted = false;
+      /** Small strain: the (B-bar) strain columns (xx, yy, zz,
+       * engineering xy) of the shape functions are affine in the cell,
+       * column i at (s, t) being
+       * columns[0][i] + s columns[1][i] + t columns[2][i], and so is the
+       * strain increment of the cell's d, increment[0] + s increment[1] +
+       * t increment[2]. */
+      std::array<std::array<Tensor<1, 4>, 8>, 3> columns;
+      std::array<Tensor<1, 4>, 3>                increment;
     };
 
     /** The strain of the cell's points; with B-bar its mean volumetric
@@ -346,6 +357,16 @@ namespace bsmpm
       Tensor<2, 3> log_derivative;
     };
 
+    /** B-bar/F-bar: the centroid of @p strain and what is taken there
+     * (cell_strain()); leaves use_b_bar false for a cell without
+     * volume. */
+    void
+    centroid_strain(const Q1CellKernel              &kernel,
+                    const std::vector<PointView>    &cell_points,
+                    const Q1CellKernel::LocalVector &d,
+                    const CellMoments               *exact_moments,
+                    CellStrain                      &strain) const;
+
     /** f and the trial elastic strain (into @p state) of a point at @p st
      * with properties @p props; with F-bar, @p strain's centroid sets the
      * volumetric part. */
@@ -367,16 +388,15 @@ namespace bsmpm
                    std::array<Voigt, 8>        &B,
                    std::array<Tensor<1, 4>, 8> &B_bar);
 
-    /** The (B-bar) strain increment (xx, yy, zz, engineering xy) of the
-     * local increment @p d at @p st; fills the columns as
-     * strain_columns(). */
+    /** The (B-bar) strain increment (xx, yy, zz, engineering xy) at
+     * @p st of the local increment that @p strain was made for (small
+     * strain). */
     static Tensor<1, 4>
-    strain_increment(const Q1CellKernel              &kernel,
-                     const CellStrain                &strain,
-                     const Point<2>                  &st,
-                     const Q1CellKernel::LocalVector &d,
-                     std::array<Voigt, 8>            &B,
-                     std::array<Tensor<1, 4>, 8>     &B_bar);
+    strain_increment(const CellStrain &strain, const Point<2> &st)
+    {
+      return strain.increment[0] + st[0] * strain.increment[1] +
+             st[1] * strain.increment[2];
+    }
 
     /** The model's response to the strain increment @p de (xx, yy, zz,
      * engineering xy) of the point with properties @p props; @p state

@@ -329,6 +329,8 @@ namespace bsmpm
     std::vector<TrilinosWrappers::MPI::Vector>  support_rhs;
     /** Whether support_matrices have the layout of system_matrix. */
     bool support_layout_current = false;
+    /** Where the cells' entries lie in tangent_matrix. */
+    CellScatter tangent_scatter;
     /**
      * Builds the sparsity pattern and the matrix: the couplings of every
      * cell, and across the faces of the cells flagged in @p weak (by
