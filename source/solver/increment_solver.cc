@@ -78,10 +78,12 @@ namespace bsmpm
     const MaterialPoints     &points   = parts.points;
 
     TrilinosWrappers::MPI::Vector last_correction;
-    // Start from the last converged increment scaled to this one: points
-    // that yielded then are evaluated on the plastic branch from the first
-    // iteration, where a start from zero would see them on the yield surface
-    // with the elastic tangent and overshoot.
+    // The predictor (Nonlinear solver/Predictor, doc/newton.md): a start
+    // from plain zero would see the points on the yield surface with the
+    // elastic tangent and undershoot. Either the tangent of the last
+    // converged state at zero (a forward Euler step), or the last converged
+    // increment scaled to this one (the points that yielded then on the
+    // plastic branch from the first iteration).
     // Zeroing a ghosted vector leaves it without ghost values: import the
     // zeros, or the cells next to another process read ghosts it does not
     // have.
@@ -99,8 +101,30 @@ namespace bsmpm
       std::max(largest_internal_force, assembly.internal_force_size());
     const double reference = std::max(at_zero, 1e-6 * largest_internal_force);
     // |R| of the system the assembly holds, that of the start.
-    double start_norm = at_zero;
-    if (previous_delta > 0 && previous_increment.size() == increment.size())
+    double     start_norm = at_zero;
+    const bool small_strain =
+      update.kinematics() == ConstitutiveUpdate::Kinematics::small_strain;
+    const NewtonSolver::Predictor predictor =
+      parts.newton.predictor() != NewtonSolver::Predictor::automatic ?
+        parts.newton.predictor() :
+        (small_strain ? NewtonSolver::Predictor::tangent :
+                        NewtonSolver::Predictor::last_increment);
+    if (predictor == NewtonSolver::Predictor::tangent && previous_delta > 0 &&
+        previous_increment.size() == increment.size())
+      {
+        // The tangent of the last converged state at zero increment: a
+        // vanishing step along the last increment puts the points that
+        // yielded in it on the plastic branch with a vanishing plastic
+        // multiplier (the continuum elasto-plastic tangent), the others on
+        // the elastic one. A step from zero sees all of them elastic.
+        increment.add(1e-6 * delta / previous_delta, previous_increment);
+        assembly.constraints().set_zero(increment);
+        increment.update_ghost_values();
+        start_norm =
+          assembly.newton_system(update, points, increment, prescribed);
+      }
+    else if (previous_delta > 0 &&
+             previous_increment.size() == increment.size())
       {
         increment.add(delta / previous_delta, previous_increment);
         assembly.constraints().set_zero(increment);
@@ -165,8 +189,18 @@ namespace bsmpm
     // dx . R(x): the slope of the potential along dx, for the line search.
     const auto slope = [&]() { return last_correction * assembly.residual(); };
 
-    NewtonSolver::Result result = parts.newton.solve(
-      reference, residual, correct, step_back, slope, start_norm);
+    // Small strain with a symmetric tangent: the potential is convex and
+    // the tangent positive, so a correction that does not descend is
+    // round-off (NewtonSolver::solve).
+    const bool positive_tangent = small_strain && update.symmetric_tangent() &&
+                                  assembly.contact_tangent_symmetric();
+    NewtonSolver::Result result = parts.newton.solve(reference,
+                                                     residual,
+                                                     correct,
+                                                     step_back,
+                                                     slope,
+                                                     start_norm,
+                                                     positive_tangent);
     // Which Gauss points of the curves touch a rigid body is fixed within
     // the iterations (CurveContact): where the converged increment changes
     // it, iterate on from there.
@@ -177,8 +211,13 @@ namespace bsmpm
            grid, assembly.kernel(), increment, prescribed);
          ++round)
       {
-        NewtonSolver::Result more = parts.newton.solve(
-          reference, residual, correct, step_back, slope, residual());
+        NewtonSolver::Result more = parts.newton.solve(reference,
+                                                       residual,
+                                                       correct,
+                                                       step_back,
+                                                       slope,
+                                                       residual(),
+                                                       positive_tangent);
         result.iterations.insert(result.iterations.end(),
                                  more.iterations.begin(),
                                  more.iterations.end());

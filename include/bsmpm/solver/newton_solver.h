@@ -82,6 +82,14 @@ namespace bsmpm
      * Iterates from the increment the caller has set. @p reference: the
      * residual of a zero increment, |R(0)|, the scale of the tolerance (a
      * good starting increment must not make it stricter).
+     *
+     * @p positive_tangent: the tangent is symmetric positive
+     * (semi-)definite (small strain, associated flow), so every exact
+     * correction descends, slope() > 0. A correction that does not is the
+     * linear solve's round-off in the tangent's nearly free modes (a
+     * perfectly plastic mechanism); once |R| is within a hundred times the
+     * tolerance such a correction is undone and the increment counts as
+     * converged, instead of halving noise (doc/newton.md).
      */
     Result
     solve(const double                                            reference,
@@ -89,7 +97,8 @@ namespace bsmpm
           const std::function<std::pair<double, unsigned int>()> &correct,
           const std::function<void(const double)>                &step_back,
           const std::function<double()>                          &slope = {},
-          const double initial_norm = -1) const;
+          const double initial_norm                                     = -1,
+          const bool   positive_tangent = false) const;
 
     /**
      * After the iterations @p result of the load increment @p delta from
@@ -116,6 +125,26 @@ namespace bsmpm
                 const double  delta,
                 std::ostream *log) const;
 
+    /** Where the iterations of a load increment start (after the first
+     * converged one; the first starts from zero). */
+    enum class Predictor
+    {
+      /** tangent in small strain, last_increment in finite strain. */
+      automatic,
+      /** The last converged increment scaled to this one. */
+      last_increment,
+      /** Zero, with the tangent of the last converged state: the points
+       * that yielded in the last increment load plastically (a forward
+       * Euler step along the tangent). */
+      tangent
+    };
+
+    Predictor
+    predictor() const
+    {
+      return start;
+    }
+
     /** How many times a load increment may be halved. */
     unsigned int
     max_step_cuts() const
@@ -129,6 +158,7 @@ namespace bsmpm
     double       tolerance            = 1e-9;
     unsigned int max_cuts             = 6;
     unsigned int line_search          = 5;
+    Predictor    start                = Predictor::automatic;
   };
 } // namespace bsmpm
 
