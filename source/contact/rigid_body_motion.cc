@@ -1,6 +1,7 @@
 #include <bsmpm/contact/rigid_body_motion.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -183,20 +184,18 @@ namespace bsmpm
     for (unsigned int k = 0; k < m; ++k)
       {
         const auto [b, d] = unknowns[k];
-        AssertThrow(S(k, k) > 1e-10 * scale,
-                    ExcMessage(
-                      "Rigid body " + std::to_string(b + 1) +
-                      ": nothing "
-                      "resists its force-controlled " +
-                      (d == 0 ? "x" : "y") +
-                      " motion (its contact stiffness in that direction is " +
-                      std::to_string(S(k, k)) + " N/m^2 against " +
-                      std::to_string(scale) +
-                      " of one cell in contact): it touches no boundary "
-                      "curve, or only a smooth one across that direction. "
-                      "Place it touching the body, make its surface rough "
-                      "or frictional, or prescribe that component "
-                      "(Displacement)."));
+        std::ostringstream message;
+        message << "Rigid body " << b + 1
+                << ": nothing resists its force-controlled "
+                << (d == 0 ? "x" : "y")
+                << " motion (its stiffness in that direction is " << S(k, k)
+                << " N/m^2, that of one cell in contact " << scale
+                << "): it touches no boundary curve (a force that pulls it "
+                   "off), or only a smooth one across that direction. Place "
+                   "it touching the body, make its surface rough or "
+                   "frictional, or prescribe that component "
+                   "(Displacement).";
+        AssertThrow(S(k, k) > 1e-10 * scale, ExcMessage(message.str()));
       }
     if (m == 2)
       {

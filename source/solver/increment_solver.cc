@@ -189,11 +189,11 @@ namespace bsmpm
             {
               Y[k].reinit(grid.locally_owned_dofs(), grid.mpi_communicator());
               const auto column_report =
-                parts.linear_solver.solve(assembly.tangent(),
-                                          Y[k],
-                                          motion->column(k),
-                                          grid.dof_handler(),
-                                          symmetric);
+                parts.linear_solver.solve_unchanged(assembly.tangent(),
+                                                    Y[k],
+                                                    motion->column(k),
+                                                    grid.dof_handler(),
+                                                    symmetric);
               assembly.constraints().distribute(Y[k]);
               solves.add(column_report);
               linear_iterations += column_report.iterations;
