@@ -2,6 +2,8 @@
 
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/contact/rigid_body.h>
+#include <bsmpm/contact/rigid_shapes.h>
+#include <bsmpm/geometry/b_spline_curve.h>
 
 #include <cmath>
 #include <limits>
@@ -15,216 +17,6 @@ namespace bsmpm
     {
       return "Rigid body " + std::to_string(b + 1);
     }
-
-
-
-    /**
-     * A polygon grown by a radius r >= 0 (the set of points within r of
-     * it): r = 0 is the polygon itself, r > 0 rounds its convex corners by
-     * arcs of radius r about them. The gap of x is its distance from the
-     * polygon less r, signed by the side.
-     */
-    class PolygonShape : public RigidShape
-    {
-    public:
-      PolygonShape(const std::vector<Point<2>> &vertices, const double radius)
-        : vertices(vertices)
-        , radius(radius)
-      {}
-
-      SurfacePoint
-      nearest(const Point<2> &x) const override
-      {
-        const unsigned int n         = vertices.size();
-        double             best      = std::numeric_limits<double>::max();
-        Point<2>           closest   = vertices[0];
-        bool               at_corner = false;
-        unsigned int       feature   = 0;
-        Tensor<1, 2>       edge_normal;
-        unsigned int       edge   = 0;
-        bool               inside = false;
-        for (unsigned int k = 0; k < n; ++k)
-          {
-            const Point<2>    &a = vertices[k];
-            const Point<2>    &b = vertices[(k + 1) % n];
-            const Tensor<1, 2> e = b - a;
-            const double       f =
-              std::clamp(((x - a) * e) / e.norm_square(), 0., 1.);
-            const Point<2> q = a + f * e;
-            const double   d = (x - q).norm();
-            if (d < best)
-              {
-                best        = d;
-                closest     = q;
-                at_corner   = (f == 0. || f == 1.);
-                feature     = f == 0. ? 2 * k + 1 :
-                              f == 1. ? 2 * ((k + 1) % n) + 1 :
-                                        2 * k;
-                edge        = k;
-                edge_normal = Tensor<1, 2>({e[1], -e[0]}) / e.norm();
-              }
-            // Crossing number: the edges that a ray from x in +x crosses.
-            if ((a[1] > x[1]) != (b[1] > x[1]) &&
-                x[0] < a[0] + (x[1] - a[1]) / (b[1] - a[1]) * e[0])
-              inside = !inside;
-          }
-        SurfacePoint s;
-        if (inside || best == 0.)
-          {
-            s.gap     = -best - radius;
-            s.normal  = edge_normal;
-            s.feature = 2 * edge;
-            return s;
-          }
-        s.gap     = best - radius;
-        s.normal  = (x - closest) / best;
-        s.feature = feature;
-        // Round a corner, or the polygon grown by r anywhere: n turns about
-        // the nearest point of the polygon.
-        if (at_corner)
-          s.turning_radius = best;
-        return s;
-      }
-
-      SurfacePoint
-      to_feature(const Point<2> &x, const unsigned int feature) const override
-      {
-        const unsigned int k = feature / 2;
-        SurfacePoint       s;
-        s.feature = feature;
-        if (feature % 2 == 0)
-          {
-            // The line of edge k, its outward normal n: gap (x - a) . n - r.
-            const Point<2>    &a = vertices[k];
-            const Tensor<1, 2> e = vertices[(k + 1) % vertices.size()] - a;
-            s.normal             = Tensor<1, 2>({e[1], -e[0]}) / e.norm();
-            s.gap                = (x - a) * s.normal - radius;
-            return s;
-          }
-        // The circle of radius r round vertex k.
-        const double d = (x - vertices[k]).norm();
-        s.gap          = d - radius;
-        s.normal =
-          d > 0 ? Tensor<1, 2>((x - vertices[k]) / d) : Tensor<1, 2>({0., 1.});
-        s.turning_radius = d;
-        return s;
-      }
-
-      std::vector<Point<2>>
-      outline() const override
-      {
-        if (radius == 0.)
-          {
-            std::vector<Point<2>> line = vertices;
-            line.push_back(vertices[0]);
-            return line;
-          }
-        // Each edge shifted out by r, joined by arcs about the corners.
-        std::vector<Point<2>> line;
-        const unsigned int    n = vertices.size();
-        for (unsigned int k = 0; k < n; ++k)
-          {
-            const Point<2> &a  = vertices[(k + n - 1) % n];
-            const Point<2> &b  = vertices[k];
-            const Point<2> &c  = vertices[(k + 1) % n];
-            const double    a0 = std::atan2(a[0] - b[0], b[1] - a[1]);
-            double          a1 = std::atan2(b[0] - c[0], c[1] - b[1]);
-            if (a1 - a0 > numbers::PI)
-              a1 -= 2 * numbers::PI;
-            if (a1 - a0 <= -numbers::PI)
-              a1 += 2 * numbers::PI;
-            // A concave corner (a1 < a0) has no arc: the two shifted edges
-            // cross; its two ends suffice for a picture.
-            const unsigned int samples = a1 > a0 ? 8 : 1;
-            for (unsigned int i = 0; i <= samples; ++i)
-              {
-                const double phi = a0 + (a1 - a0) * i / samples;
-                line.push_back(
-                  b + radius * Tensor<1, 2>({std::cos(phi), std::sin(phi)}));
-              }
-          }
-        line.push_back(line.front());
-        return line;
-      }
-
-      double
-      size() const override
-      {
-        double largest = 0;
-        for (const auto &v : vertices)
-          largest = std::max(largest, (v - vertices[0]).norm());
-        return largest + radius;
-      }
-
-      Point<2>
-      reference_point() const override
-      {
-        return vertices[0];
-      }
-
-    private:
-      std::vector<Point<2>> vertices;
-      double                radius;
-    };
-
-
-
-    class CircleShape : public RigidShape
-    {
-    public:
-      CircleShape(const Point<2> &center, const double radius)
-        : center(center)
-        , radius(radius)
-      {}
-
-      SurfacePoint
-      nearest(const Point<2> &x) const override
-      {
-        const double d = (x - center).norm();
-        SurfacePoint s;
-        s.gap = d - radius;
-        s.normal =
-          d > 0 ? Tensor<1, 2>((x - center) / d) : Tensor<1, 2>({0., 1.});
-        s.turning_radius = d;
-        return s;
-      }
-
-      SurfacePoint
-      to_feature(const Point<2> &x, const unsigned int) const override
-      {
-        return nearest(x);
-      }
-
-      std::vector<Point<2>>
-      outline() const override
-      {
-        std::vector<Point<2>>  line;
-        constexpr unsigned int samples = 128;
-        for (unsigned int i = 0; i <= samples; ++i)
-          {
-            const double phi = 2 * numbers::PI * i / samples;
-            line.push_back(
-              center + radius * Tensor<1, 2>({std::cos(phi), std::sin(phi)}));
-          }
-        return line;
-      }
-
-      double
-      size() const override
-      {
-        return radius;
-      }
-
-      Point<2>
-      reference_point() const override
-      {
-        return center;
-      }
-
-    private:
-      Point<2> center;
-      double   radius;
-    };
 
 
 
@@ -254,10 +46,11 @@ namespace bsmpm
         prm.declare_entry(
           "Shape",
           "none",
-          Patterns::Selection("none|polygon|circle"),
+          Patterns::Selection("none|polygon|circle|spline"),
           "A rigid body that the boundary curves of the body come into "
           "contact with (doc/contact.md): none, a polygon (Vertices, "
-          "Corner radius) or a circle (Center, Radius). Every free stretch "
+          "Corner radius), a circle (Center, Radius) or a closed cubic "
+          "B-spline through the Vertices (Corners). Every free stretch "
           "of every boundary curve takes contact with it where it touches; "
           "curve stretches with a load or support do not.");
         prm.declare_entry("Vertices",
@@ -265,7 +58,16 @@ namespace bsmpm
                           Patterns::Anything(),
                           "polygon: its vertices 'x0, y0; x1, y1; ...' in m "
                           "(at least 3, counter-clockwise, the last joins "
-                          "the first), in the body's place at load factor 0.");
+                          "the first), in the body's place at load factor 0; "
+                          "spline: the points the outline passes through, "
+                          "given the same way.");
+        prm.declare_entry("Corners",
+                          "",
+                          Patterns::List(Patterns::Integer(0)),
+                          "spline: indices (from 0) of Vertices where the "
+                          "outline keeps a sharp corner, besides those "
+                          "detected where the points are straight on both "
+                          "sides of a change of direction.");
         prm.declare_entry("Corner radius",
                           "0",
                           Patterns::Double(0.),
@@ -342,8 +144,9 @@ namespace bsmpm
             const double radius = prm.get_double("Radius");
             AssertThrow(radius > 0,
                         ExcMessage(where + "/Radius must be positive."));
-            body.shape = std::make_shared<CircleShape>(
-              ParameterTools::get_point(prm, "Center"), radius);
+            body.shape =
+              RigidShapes::circle(ParameterTools::get_point(prm, "Center"),
+                                  radius);
           }
         else
           {
@@ -377,9 +180,29 @@ namespace bsmpm
                         ExcMessage(where +
                                    "/Vertices must run counter-clockwise "
                                    "round a polygon of positive area."));
-            body.shape =
-              std::make_shared<PolygonShape>(vertices,
-                                             prm.get_double("Corner radius"));
+            if (kind == "polygon")
+              body.shape =
+                RigidShapes::polygon(vertices, prm.get_double("Corner radius"));
+            else
+              {
+                std::vector<unsigned int> corners;
+                for (const auto i :
+                     ParameterTools::get_unsigned(prm, "Corners"))
+                  {
+                    AssertThrow(i < vertices.size(),
+                                ExcMessage(where +
+                                           "/Corners: " + std::to_string(i) +
+                                           " is not the index of one of the " +
+                                           std::to_string(vertices.size()) +
+                                           " Vertices (from 0)."));
+                    corners.push_back(i);
+                  }
+                AssertThrow(
+                  !BSplineCurve(vertices, true, corners).is_self_intersecting(),
+                  ExcMessage(where + ": the spline through the Vertices "
+                                     "crosses itself."));
+                body.shape = RigidShapes::spline(vertices, corners);
+              }
           }
 
         read_motion(prm, where, body);

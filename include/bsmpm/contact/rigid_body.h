@@ -45,7 +45,8 @@ namespace bsmpm
 
   /**
    * The outline of a rigid body in its starting place: a polygon (corners
-   * rounded by a radius if wanted) or a circle. Rigid bodies translate only,
+   * rounded by a radius if wanted), a circle or a closed B-spline
+   * (rigid_shapes.h). Rigid bodies translate only,
    * so the outline never changes shape.
    */
   class RigidShape
