@@ -231,8 +231,9 @@ namespace bsmpm
     const auto        components = Utilities::split_string_list(text, ';');
     AssertThrow(components.size() == 2,
                 ExcMessage(where + "/Displacement = '" + text +
-                           "' is not two components 'ux; uy', each an "
-                           "expression of the load factor t or 'free'."));
+                           "' is not two expressions 'ux; uy' of the load "
+                           "factor t ('free' for a force-controlled "
+                           "component)."));
     std::string prescribed;
     for (unsigned int d = 0; d < 2; ++d)
       {
@@ -270,8 +271,8 @@ namespace bsmpm
     parse(body.motion,
           "Displacement",
           prescribed,
-          "two components 'ux; uy', each an expression of the load factor t "
-          "or 'free'");
+          "two expressions 'ux; uy' of the load factor t ('free' for a "
+          "force-controlled component)");
     parse(body.force,
           "Force",
           prm.get("Force"),
