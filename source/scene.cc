@@ -651,11 +651,18 @@ namespace bsmpm
             largest         = std::max(largest, estimate);
           }
         if (contact.enabled())
-          contact.begin_increment(boundary_curves,
-                                  grid,
-                                  material.penalty_modulus(),
-                                  lambda,
-                                  lambda + delta);
+          {
+            contact.begin_increment(boundary_curves,
+                                    grid,
+                                    material.penalty_modulus(),
+                                    lambda,
+                                    lambda + delta);
+            // A body under a force moved to touch before the iterations.
+            const std::string note = contact.motion().take_notes();
+            if (!note.empty())
+              pcout << "       load " << lambda << " + " << delta << ": "
+                    << note << '\n';
+          }
         if (constitutive_update)
           {
             if (!solve_nonlinear(step, lambda, delta, cuts, record))

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <iomanip>
+#include <limits>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -16,6 +18,15 @@ namespace bsmpm
   CurveContact::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact");
+    prm.declare_entry(
+      "Check tangent",
+      "false",
+      Patterns::Bool(),
+      "A check for developers: compares the contact's tangent on every "
+      "touching piece, with the terms of a force-controlled rigid body's "
+      "translation, with central differences of its forces at every Newton "
+      "iteration; summary.json records the largest relative difference as "
+      "contact_tangent_error. Costs ten force evaluations per piece.");
     prm.declare_entry(
       "Penalty",
       "10",
@@ -42,12 +53,14 @@ namespace bsmpm
   {
     prm.enter_subsection("Contact");
     gamma          = prm.get_double("Penalty");
+    check_tangent  = prm.get_bool("Check tangent");
     n_gauss_points = prm.get_integer("Gauss points per piece");
     prm.leave_subsection();
     bodies = RigidBody::create_all(prm);
     AssertThrow(bodies.empty() || gamma > 0,
                 ExcMessage("Contact/Penalty must be positive."));
     resultants.assign(bodies.size(), Resultant());
+    body_motion.initialize(bodies);
   }
 
 
@@ -63,6 +76,7 @@ namespace bsmpm
     penalty        = gamma * stiffness / h;
     from           = load_from;
     to             = load_to;
+    body_motion.begin_increment(bodies, from, to);
     pieces.clear();
     const QGauss<1> gauss(n_gauss_points);
     const auto     &all_curves = curves.get_curves();
@@ -86,16 +100,16 @@ namespace bsmpm
                 // Within two cells of the body where the increment ends,
                 // or of its path: a piece cannot move further in one
                 // increment.
-                const double reach = 2 * h + (bodies[b].displacement(to) -
-                                              bodies[b].displacement(from))
-                                               .norm();
-                if (bodies[b].surely_further_than(middle, to, reach))
+                const Tensor<1, 2> &start = body_motion.start(b);
+                const Tensor<1, 2> &end   = body_motion.end(b);
+                const double        reach = 2 * h + (end - start).norm();
+                if (bodies[b].surely_further_than(middle, end, reach))
                   continue;
-                if (bodies[b].nearest(middle, to).gap > reach)
+                if (bodies[b].nearest(middle, end).gap > reach)
                   continue;
                 // The part of the outline the piece faces: that nearest to
                 // it before the increment moves anything.
-                const SurfacePoint nearest = bodies[b].nearest(middle, from);
+                const SurfacePoint nearest = bodies[b].nearest(middle, start);
                 // The pieces of a curve in one cell (one per segment there)
                 // that face one part of the rigid outline act as one: one
                 // pressure per cell, curve and part.
@@ -130,7 +144,7 @@ namespace bsmpm
                     contact_piece.positions.push_back(spline.value(u));
                     contact_piece.features.push_back(
                       bodies[b]
-                        .nearest(contact_piece.positions.back(), from)
+                        .nearest(contact_piece.positions.back(), start)
                         .feature);
                     // The first guess of the part that touches: where the
                     // rigid body, moved to the increment's end, overlaps
@@ -138,7 +152,7 @@ namespace bsmpm
                     contact_piece.touching.push_back(
                       bodies[b]
                         .to_feature(contact_piece.positions.back(),
-                                    to,
+                                    end,
                                     contact_piece.features.back())
                         .gap <= 1e-12 * h);
                     contact_piece.weights.push_back(
@@ -151,6 +165,82 @@ namespace bsmpm
               }
           }
       }
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (bodies[b].has_free_motion())
+        touch_if_free(b, grid);
+  }
+
+
+
+  void
+  CurveContact::touch_if_free(const unsigned int b, const BackgroundGrid &grid)
+  {
+    const MPI_Comm communicator = grid.mpi_communicator();
+    const double   h            = grid.min_cell_size();
+    const double   touching     = 1e-12 * h;
+    const auto     touches      = [&]() {
+      bool any = false;
+      for (const ContactPiece &piece : pieces)
+        if (piece.body == b)
+          for (const bool t : piece.touching)
+            any = any || t;
+      return Utilities::MPI::logical_or(any, communicator);
+    };
+    if (touches())
+      return;
+    // A body under a force that touches nothing has no stiffness against
+    // its free motion (H - G Y = 0): move it along its force until it
+    // touches the first Gauss point of a curve. The gap of a point falls
+    // by s n . e as the body moves by s e (exactly for an edge, to first
+    // order for a circle: a few rounds).
+    Tensor<1, 2> direction = bodies[b].applied_force(to);
+    if (direction.norm() == 0)
+      return;
+    direction /= direction.norm();
+    double moved = 0;
+    for (unsigned int round = 0; round < 4 && !touches(); ++round)
+      {
+        double shift = std::numeric_limits<double>::infinity();
+        for (const ContactPiece &piece : pieces)
+          if (piece.body == b)
+            for (unsigned int q = 0; q < piece.positions.size(); ++q)
+              {
+                const SurfacePoint surface =
+                  bodies[b].to_feature(piece.positions[q],
+                                       body_motion.end(b),
+                                       piece.features[q]);
+                const double approach = surface.normal * direction;
+                if (approach > 0)
+                  shift = std::min(shift, surface.gap / approach);
+              }
+        shift = Utilities::MPI::min(shift, communicator);
+        AssertThrow(std::isfinite(shift),
+                    ExcMessage(
+                      bodies[b].name() + " (Rigid body " +
+                      std::to_string(b + 1) + "): its Force at load factor " +
+                      std::to_string(to) +
+                      " pushes it where no boundary curve is within two "
+                      "cells: nothing supports it. Place it touching the "
+                      "body (or within two cells in the direction of its "
+                      "Force)."));
+        // Just past touching, so that the nearest point presses with a
+        // pressure of round-off and the body has a stiffness.
+        shift += 1e-10 * h;
+        body_motion.approach(b, shift * direction);
+        moved += shift;
+        for (ContactPiece &piece : pieces)
+          if (piece.body == b)
+            for (unsigned int q = 0; q < piece.positions.size(); ++q)
+              piece.touching[q] = bodies[b]
+                                    .to_feature(piece.positions[q],
+                                                body_motion.end(b),
+                                                piece.features[q])
+                                    .gap <= touching;
+      }
+    std::ostringstream text;
+    text << bodies[b].name() << " touched nothing: moved by " << moved
+         << " m along its force to touch";
+    body_motion.note(text.str());
   }
 
 
@@ -159,11 +249,19 @@ namespace bsmpm
   CurveContact::evaluate(const ContactPiece              &piece,
                          const BackgroundGrid            &grid,
                          const Q1CellKernel              &kernel,
-                         const Q1CellKernel::LocalVector &d) const
+                         const Q1CellKernel::LocalVector &d,
+                         const Tensor<1, 2>              &body_shift) const
   {
-    constexpr unsigned int n    = Q1CellKernel::dofs_per_cell;
-    const RigidBody       &body = bodies[piece.body];
-    const unsigned int     n_q  = piece.positions.size();
+    // The cell's DoFs and, as two more, the body's translation at the
+    // increment's end: moving the body by c moves every gap as moving the
+    // point by -c does, so c enters as a DoF with the shape -e_k at every
+    // Gauss point. The extended force and stiffness give the bordered
+    // terms of a force-controlled body (RigidBodyMotion) with no other
+    // formula than the grid's.
+    constexpr unsigned int n_grid = Q1CellKernel::dofs_per_cell;
+    constexpr unsigned int n      = n_grid + 2;
+    const RigidBody       &body   = bodies[piece.body];
+    const unsigned int     n_q    = piece.positions.size();
     // Where the Gauss points are after the increment, and their gaps to
     // the part of the outline each faces.
     std::vector<std::array<Tensor<1, 2>, n>> N(n_q);
@@ -176,13 +274,16 @@ namespace bsmpm
       {
         const Point<2> st =
           grid.local_coordinates(piece.positions[q], piece.cell);
-        for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int i = 0; i < n_grid; ++i)
           {
             N[q][i] = kernel.shape_value(i, st);
             u[q] += d[i] * N[q][i];
           }
-        surface[q] =
-          body.to_feature(piece.positions[q] + u[q], to, piece.features[q]);
+        N[q][n_grid]     = Tensor<1, 2>({-1., 0.});
+        N[q][n_grid + 1] = Tensor<1, 2>({0., -1.});
+        surface[q]       = body.to_feature(piece.positions[q] + u[q],
+                                     body_motion.end(piece.body) + body_shift,
+                                     piece.features[q]);
         if (!piece.touching[q])
           continue;
         state.gap += piece.weights[q] * surface[q].gap;
@@ -248,8 +349,9 @@ namespace bsmpm
     // Coulomb's return map on the mean slip, relative to the rigid body,
     // of the part that touches, from the mean tangential traction of the
     // last increment there.
-    const Tensor<1, 2> rigid = body.displacement(to) - body.displacement(from);
-    double             slip = 0, previous = 0;
+    const Tensor<1, 2> rigid =
+      body_motion.end(piece.body) + body_shift - body_motion.start(piece.body);
+    double slip = 0, previous = 0;
     for (unsigned int q = 0; q < n_q; ++q)
       if (piece.touching[q])
         {
@@ -318,9 +420,16 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix                   &tangent,
     TrilinosWrappers::MPI::Vector                    &force)
   {
-    std::vector<types::global_dof_index> dof_indices(
-      Q1CellKernel::dofs_per_cell);
-    bool symmetric = true;
+    constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
+    std::vector<types::global_dof_index> dof_indices(n);
+    const bool                           bordered = body_motion.has_unknowns();
+    if (bordered)
+      body_motion.reset_bordered_terms(grid.locally_owned_dofs(),
+                                       grid.mpi_communicator(),
+                                       penalty * grid.min_cell_size());
+    bool               symmetric = true;
+    FullMatrix<double> stiffness(n, n);
+    Vector<double>     cell_force(n), column(n), row(n);
     for (const ContactPiece &piece : pieces)
       {
         const PieceState state =
@@ -328,10 +437,104 @@ namespace bsmpm
         if (!state.active)
           continue;
         symmetric = symmetric && !state.sliding;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            cell_force[i] = state.force[i];
+            for (unsigned int j = 0; j < n; ++j)
+              stiffness(i, j) = state.stiffness(i, j);
+          }
         constraints.distribute_local_to_global(
-          state.stiffness, state.force, dof_indices, tangent, force);
+          stiffness, cell_force, dof_indices, tangent, force);
+        if (check_tangent)
+          largest_tangent_error = std::max(
+            largest_tangent_error,
+            tangent_error(piece, grid, kernel, state, increment, prescribed));
+        if (!bordered)
+          continue;
+        // A force-controlled component k of the body's translation: the
+        // column -d(grid force)/dc_k, the row -d(force on the body)_k/du,
+        // the block -d(force on the body)/dc and the force on the body
+        // (the extended entries n + d of evaluate()).
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            const int k = body_motion.unknown_of(piece.body, d);
+            if (k < 0)
+              continue;
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                column[i] = state.stiffness(i, n + d);
+                row[i]    = state.stiffness(n + d, i);
+              }
+            constraints.distribute_local_to_global(column,
+                                                   dof_indices,
+                                                   body_motion.column(k));
+            constraints.distribute_local_to_global(row,
+                                                   dof_indices,
+                                                   body_motion.row(k));
+            body_motion.contact_force()[k] += state.force[n + d];
+            for (unsigned int e = 0; e < 2; ++e)
+              {
+                const int l = body_motion.unknown_of(piece.body, e);
+                if (l >= 0)
+                  body_motion.block()(k, l) += state.stiffness(n + d, n + e);
+              }
+          }
       }
+    if (bordered)
+      body_motion.finish_bordered_terms(bodies, to);
     return Utilities::MPI::min(symmetric ? 1 : 0, grid.mpi_communicator()) == 1;
+  }
+
+
+
+  double
+  CurveContact::tangent_error(
+    const ContactPiece                               &piece,
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const PieceState                                 &state,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  {
+    constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
+    std::vector<types::global_dof_index> dof_indices(n);
+    const Q1CellKernel::LocalVector      d = MaterialPoints::cell_increment(
+      grid.locally_owned_cell(piece.cell), increment, prescribed, dof_indices);
+    // Central differences of the force on the cell's DoFs and the body's
+    // translation by each of them, against minus the stiffness.
+    const double step = 1e-6 * grid.min_cell_size();
+    // A piece that touches by less than the differences move it has the
+    // kink where it opens between them: no derivative to compare.
+    if (-state.gap < 10 * step)
+      return 0.;
+    double largest = 0, difference = 0;
+    for (unsigned int j = 0; j < n + 2; ++j)
+      {
+        std::array<PieceState, 2> sides;
+        for (unsigned int side = 0; side < 2; ++side)
+          {
+            const double              sign = side == 0 ? 1. : -1.;
+            Q1CellKernel::LocalVector dj   = d;
+            Tensor<1, 2>              shift;
+            if (j < n)
+              dj[j] += sign * step;
+            else
+              shift[j - n] = sign * step;
+            sides[side] = evaluate(piece, grid, kernel, dj, shift);
+          }
+        const auto force = [&](const unsigned int side, const unsigned int i) {
+          return sides[side].active ? sides[side].force[i] : 0.;
+        };
+        for (unsigned int i = 0; i < n + 2; ++i)
+          {
+            const double fi = force(0, i) - force(1, i);
+            largest = std::max(largest, std::abs(state.stiffness(i, j)));
+            difference =
+              std::max(difference,
+                       std::abs(state.stiffness(i, j) + fi / (2 * step)));
+          }
+      }
+    return largest > 0 ? difference / largest : 0.;
   }
 
 
@@ -441,6 +644,9 @@ namespace bsmpm
       }
     Utilities::MPI::sum(sums, communicator, sums);
     Utilities::MPI::max(penetration, communicator, penetration);
+    if (check_tangent)
+      largest_tangent_error =
+        Utilities::MPI::max(largest_tangent_error, communicator);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         resultants[b].force = Tensor<1, 2>({sums[4 * b + 0], sums[4 * b + 1]});
@@ -455,6 +661,18 @@ namespace bsmpm
           point_tractions[c][k] =
             Tensor<1, 2>({tractions[c][2 * k], tractions[c][2 * k + 1]});
       }
+    body_motion.accept();
+  }
+
+
+
+  std::vector<std::vector<Point<2>>>
+  CurveContact::outlines() const
+  {
+    std::vector<std::vector<Point<2>>> lines;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      lines.push_back(bodies[b].outline(body_motion.end(b)));
+    return lines;
   }
 
 
@@ -485,7 +703,7 @@ namespace bsmpm
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         const std::string &name              = bodies[b].name();
-        const Tensor<1, 2> u                 = bodies[b].displacement(to);
+        const Tensor<1, 2> u                 = body_motion.end(b);
         quantities[name + "_force_x"]        = resultants[b].force[0];
         quantities[name + "_force_y"]        = resultants[b].force[1];
         quantities[name + "_displacement_x"] = u[0];
@@ -494,6 +712,9 @@ namespace bsmpm
         quantities[name + "_sliding_length"] = resultants[b].sliding_length;
         quantities[name + "_penetration"]    = resultants[b].penetration;
       }
+    body_motion.record(bodies, to, quantities);
+    if (check_tangent)
+      quantities["contact_tangent_error"] = largest_tangent_error;
   }
 
 

@@ -86,10 +86,26 @@ namespace bsmpm
           "Displacement",
           "0; 0",
           Patterns::Anything(),
-          "The body's translation 'ux; uy' in m as expressions of the load "
-          "factor t (0 at the start, 1 at the end of the load steps), for "
-          "example '0; -0.1*t', or a load, unload and lift: "
-          "'0; if(t < 0.5, -0.2*t, -0.2 + 0.3*t)'.");
+          "The body's translation 'ux; uy' in m, each component either an "
+          "expression of the load factor t (0 at the start, 1 at the end of "
+          "the load steps), for example '0; -0.1*t', or a load, unload and "
+          "lift: '0; if(t < 0.5, -0.2*t, -0.2 + 0.3*t)'; or 'free': that "
+          "component is force-controlled, solved for so that the contact "
+          "forces balance the Force (a footing pushed down by a force and "
+          "held horizontally: '0; free'). A free component needs contact "
+          "that resists it: the body must touch a boundary curve, or reach "
+          "one within two cells in the direction of its Force, at the "
+          "first step (doc/contact.md).");
+        prm.declare_entry(
+          "Force",
+          "0; 0",
+          Patterns::Anything(),
+          "The force 'fx; fy' in N/m (per unit thickness) applied to the "
+          "body in its free (force-controlled) components, as expressions "
+          "of the load factor t, for example '0; -500*t' for a footing "
+          "pushed down by 500 N/m at the end of the load. A component with "
+          "a prescribed Displacement must have the force 0 here: a "
+          "component is either displacement- or force-controlled.");
         prm.declare_entry("Friction",
                           "smooth",
                           Patterns::Selection("smooth|frictional|rough"),
@@ -189,33 +205,7 @@ namespace bsmpm
               }
           }
 
-        body.motion = std::make_shared<FunctionParser<1>>(2);
-        // The parser finds an unknown name only when it first evaluates.
-        try
-          {
-            body.motion->initialize("t",
-                                    prm.get("Displacement"),
-                                    std::map<std::string, double>());
-            body.displacement(0.);
-          }
-        catch (...)
-          {
-            AssertThrow(false,
-                        ExcMessage(where + "/Displacement = '" +
-                                   prm.get("Displacement") +
-                                   "' is not two expressions 'ux; uy' of "
-                                   "the load factor t."));
-          }
-        for (const double t : {0., 0.5, 1.})
-          {
-            const Tensor<1, 2> u = body.displacement(t);
-            AssertThrow(std::isfinite(u[0]) && std::isfinite(u[1]),
-                        ExcMessage(where +
-                                   "/Displacement is not finite at "
-                                   "t = " +
-                                   std::to_string(t) + "."));
-          }
-
+        read_motion(prm, where, body);
         const std::string friction = prm.get("Friction");
         body.surface_friction      = friction == "smooth" ? Friction::smooth :
                                      friction == "frictional" ?
@@ -230,33 +220,124 @@ namespace bsmpm
 
 
 
+  void
+  RigidBody::read_motion(ParameterHandler  &prm,
+                         const std::string &where,
+                         RigidBody         &body)
+  {
+    // 'ux; uy' with 'free' for a force-controlled component: the parser
+    // reads 0 there.
+    const std::string text       = prm.get("Displacement");
+    const auto        components = Utilities::split_string_list(text, ';');
+    AssertThrow(components.size() == 2,
+                ExcMessage(where + "/Displacement = '" + text +
+                           "' is not two expressions 'ux; uy' of the load "
+                           "factor t ('free' for a force-controlled "
+                           "component)."));
+    std::string prescribed;
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        body.free_component[d] = components[d] == "free";
+        prescribed +=
+          (d == 0 ? "" : ";") + (body.free_component[d] ? "0" : components[d]);
+      }
+
+    const auto parse = [&](std::shared_ptr<FunctionParser<1>> &function,
+                           const std::string                  &name,
+                           const std::string                  &expressions,
+                           const std::string                  &form) {
+      function = std::make_shared<FunctionParser<1>>(2);
+      // The parser finds an unknown name only when it first evaluates.
+      try
+        {
+          function->initialize("t",
+                               expressions,
+                               std::map<std::string, double>());
+          function->value(Point<1>(0.), 0);
+          function->value(Point<1>(0.), 1);
+        }
+      catch (...)
+        {
+          AssertThrow(false,
+                      ExcMessage(where + "/" + name + " = '" + prm.get(name) +
+                                 "' is not " + form + "."));
+        }
+      for (const double t : {0., 0.5, 1.})
+        for (unsigned int d = 0; d < 2; ++d)
+          AssertThrow(std::isfinite(function->value(Point<1>(t), d)),
+                      ExcMessage(where + "/" + name + " is not finite at t = " +
+                                 std::to_string(t) + "."));
+    };
+    parse(body.motion,
+          "Displacement",
+          prescribed,
+          "two expressions 'ux; uy' of the load factor t ('free' for a "
+          "force-controlled component)");
+    parse(body.force,
+          "Force",
+          prm.get("Force"),
+          "two expressions 'fx; fy' of the load factor t");
+
+    // A component is either displacement- or force-controlled: a force on
+    // a prescribed component would be silently ignored.
+    const auto forces = Utilities::split_string_list(prm.get("Force"), ';');
+    for (unsigned int d = 0; d < 2; ++d)
+      if (!body.free_component[d])
+        {
+          bool zero = true;
+          for (const double t : {0., 0.25, 0.5, 0.75, 1.})
+            zero = zero && body.force->value(Point<1>(t), d) == 0.;
+          AssertThrow(zero,
+                      ExcMessage(
+                        where + ": the " + (d == 0 ? "x" : "y") +
+                        " component has both a Displacement ('" +
+                        components[d] + "') and a Force ('" + forces[d] +
+                        "'). A component is either displacement-controlled "
+                        "(an expression of t in Displacement, Force 0) or "
+                        "force-controlled ('free' in Displacement, its "
+                        "load in Force)."));
+        }
+  }
+
+
+
   Tensor<1, 2>
   RigidBody::displacement(const double t) const
   {
     const Point<1> p(t);
-    return Tensor<1, 2>({motion->value(p, 0), motion->value(p, 1)});
+    return Tensor<1, 2>({free_component[0] ? 0. : motion->value(p, 0),
+                         free_component[1] ? 0. : motion->value(p, 1)});
+  }
+
+
+
+  Tensor<1, 2>
+  RigidBody::applied_force(const double t) const
+  {
+    const Point<1> p(t);
+    return Tensor<1, 2>({free_component[0] ? force->value(p, 0) : 0.,
+                         free_component[1] ? force->value(p, 1) : 0.});
   }
 
 
 
   bool
-  RigidBody::surely_further_than(const Point<2> &x,
-                                 const double    t,
-                                 const double    distance) const
+  RigidBody::surely_further_than(const Point<2>     &x,
+                                 const Tensor<1, 2> &translation,
+                                 const double        distance) const
   {
-    const Point<2> c = shape->reference_point() + displacement(t);
+    const Point<2> c = shape->reference_point() + translation;
     return (x - c).norm() > shape->size() + distance;
   }
 
 
 
   std::vector<Point<2>>
-  RigidBody::outline(const double t) const
+  RigidBody::outline(const Tensor<1, 2> &translation) const
   {
     std::vector<Point<2>> line = shape->outline();
-    const Tensor<1, 2>    u    = displacement(t);
     for (auto &p : line)
-      p += u;
+      p += translation;
     return line;
   }
 } // namespace bsmpm

@@ -63,9 +63,7 @@ namespace bsmpm
       write_curves(step, load_factor);
     if (contact != nullptr)
       {
-        std::vector<std::vector<Point<2>>> outlines;
-        for (const auto &body : contact->rigid_bodies())
-          outlines.push_back(body.outline(load_factor));
+        const std::vector<std::vector<Point<2>>> outlines = contact->outlines();
         output.write_serial_series("rigid_bodies",
                                    step,
                                    load_factor,

@@ -78,6 +78,28 @@ namespace bsmpm
     const MaterialPoints     &points   = parts.points;
 
     TrilinosWrappers::MPI::Vector last_correction;
+    // Rigid bodies under a force: their free translation c joins the
+    // unknowns, and its equilibrium r_c the residual (RigidBodyMotion).
+    RigidBodyMotion *motion =
+      parts.contact != nullptr && parts.contact->motion().has_unknowns() ?
+        &parts.contact->motion() :
+        nullptr;
+    Vector<double> last_motion_correction;
+    // |(R, r_c)| of the system that newton_system() assembled.
+    const auto with_bodies = [&](const double norm) {
+      return motion == nullptr ?
+               norm :
+               std::sqrt(norm * norm + std::pow(motion->residual_norm(), 2));
+    };
+    // The scale of the tolerance, as for the grid, is the residual of a
+    // zero increment: the bodies where the last increment left them (their
+    // force increment unbalanced), not at the predicted place.
+    Vector<double> predicted_place;
+    if (motion != nullptr)
+      {
+        predicted_place = motion->values();
+        motion->set_values(motion->start_values());
+      }
     // The predictor (Nonlinear solver/Predictor, doc/newton.md): a start
     // from plain zero would see the points on the yield surface with the
     // elastic tangent and undershoot. Either the tangent of the last
@@ -95,8 +117,8 @@ namespace bsmpm
     // residual stresses in balance) has an |R(0)| that is round-off of
     // forces a billion times larger, which a relative tolerance cannot
     // reach.
-    const double at_zero =
-      assembly.newton_system(update, points, increment, prescribed);
+    const double at_zero = with_bodies(
+      assembly.newton_system(update, points, increment, prescribed));
     largest_internal_force =
       std::max(largest_internal_force, assembly.internal_force_size());
     const double reference = std::max(at_zero, 1e-6 * largest_internal_force);
@@ -109,8 +131,18 @@ namespace bsmpm
         parts.newton.predictor() :
         (small_strain ? NewtonSolver::Predictor::tangent :
                         NewtonSolver::Predictor::last_increment);
-    if (predictor == NewtonSolver::Predictor::tangent && previous_delta > 0 &&
-        previous_increment.size() == increment.size())
+    const bool has_last_increment =
+      previous_delta > 0 && previous_increment.size() == increment.size();
+    // The tangent predictor keeps force-controlled bodies where the last
+    // increment left them (its first correction moves them with the
+    // grid); the scaled last increment moves them as it moves the grid.
+    if (motion != nullptr &&
+        !(predictor == NewtonSolver::Predictor::tangent && has_last_increment))
+      {
+        motion->set_values(predicted_place);
+        start_norm = -1; // the held system is not that of the prediction
+      }
+    if (predictor == NewtonSolver::Predictor::tangent && has_last_increment)
       {
         // The tangent of the last converged state at zero increment: a
         // vanishing step along the last increment puts the points that
@@ -120,11 +152,10 @@ namespace bsmpm
         increment.add(1e-6 * delta / previous_delta, previous_increment);
         assembly.constraints().set_zero(increment);
         increment.update_ghost_values();
-        start_norm =
-          assembly.newton_system(update, points, increment, prescribed);
+        start_norm = with_bodies(
+          assembly.newton_system(update, points, increment, prescribed));
       }
-    else if (previous_delta > 0 &&
-             previous_increment.size() == increment.size())
+    else if (has_last_increment)
       {
         increment.add(delta / previous_delta, previous_increment);
         assembly.constraints().set_zero(increment);
@@ -135,8 +166,8 @@ namespace bsmpm
         // displacement may still leave a larger one: only one ten times
         // larger than that of zero is dropped (cantilever in finite
         // strain: 26 times in step 3).
-        start_norm =
-          assembly.newton_system(update, points, increment, prescribed);
+        start_norm = with_bodies(
+          assembly.newton_system(update, points, increment, prescribed));
         if (!(start_norm < 10 * reference))
           {
             increment = 0;
@@ -145,7 +176,8 @@ namespace bsmpm
           }
       }
     const auto residual = [&]() {
-      return assembly.newton_system(update, points, increment, prescribed);
+      return with_bodies(
+        assembly.newton_system(update, points, increment, prescribed));
     };
     const auto correct = [&]() {
       TimerOutput::Scope            t(timer, "solve");
@@ -171,23 +203,69 @@ namespace bsmpm
                                                     grid.dof_handler(),
                                                     symmetric);
       assembly.constraints().distribute(correction);
+      solves.add(report);
+      unsigned int linear_iterations = report.iterations;
+      double       motion_size = 0, motion_correction = 0;
+      if (motion != nullptr)
+        {
+          // Block elimination of [K B; G H] [du; dc] = [R; r_c] with the
+          // grid's matrix: K X = R (above), K Y_k = B_k, then
+          // (H - G Y) dc = r_c - G X and du = X - Y dc.
+          const unsigned int m = motion->get_unknowns().size();
+          std::vector<TrilinosWrappers::MPI::Vector> Y(m);
+          for (unsigned int k = 0; k < m; ++k)
+            {
+              Y[k].reinit(grid.locally_owned_dofs(), grid.mpi_communicator());
+              const auto column_report =
+                parts.linear_solver.solve_unchanged(assembly.tangent(),
+                                                    Y[k],
+                                                    motion->column(k),
+                                                    grid.dof_handler(),
+                                                    symmetric);
+              assembly.constraints().distribute(Y[k]);
+              solves.add(column_report);
+              linear_iterations += column_report.iterations;
+            }
+          last_motion_correction = motion->bordered_correction(correction, Y);
+          for (unsigned int k = 0; k < m; ++k)
+            correction.add(-last_motion_correction[k], Y[k]);
+          motion->add(1., last_motion_correction);
+          motion_correction = last_motion_correction.norm_sqr();
+          // The body's motion in the increment, as du is the grid's.
+          Vector<double> moved = motion->values();
+          moved -= motion->start_values();
+          motion_size = moved.norm_sqr();
+        }
       for (const auto i : grid.locally_owned_dofs())
         increment(i) += correction(i);
       increment.update_ghost_values();
-      solves.add(report);
-      const double size = increment.l2_norm();
-      last_correction   = correction;
-      return std::make_pair(size > 0 ? correction.l2_norm() / size : 0.,
-                            report.iterations);
+      const double size =
+        std::sqrt(std::pow(increment.l2_norm(), 2) + motion_size);
+      last_correction = correction;
+      return std::make_pair(size > 0 ?
+                              std::sqrt(std::pow(correction.l2_norm(), 2) +
+                                        motion_correction) /
+                                size :
+                              0.,
+                            linear_iterations);
     };
     const auto step_back = [&](const double alpha) {
       // From x + a dx to x + (a - alpha) dx.
       for (const auto i : grid.locally_owned_dofs())
         increment(i) -= alpha * last_correction(i);
       increment.update_ghost_values();
+      if (motion != nullptr)
+        motion->add(-alpha, last_motion_correction);
     };
-    // dx . R(x): the slope of the potential along dx, for the line search.
-    const auto slope = [&]() { return last_correction * assembly.residual(); };
+    // dx . R(x): the slope of the potential along dx, for the line search
+    // (with dc . r_c: the applied force on a body is a dead load, whose
+    // potential is -F . c).
+    const auto slope = [&]() {
+      return last_correction * assembly.residual() +
+             (motion != nullptr ?
+                last_motion_correction * motion->get_residual() :
+                0.);
+    };
 
     // Small strain with a symmetric tangent: the potential is convex and
     // the tangent positive, so a correction that does not descend is

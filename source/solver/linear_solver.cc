@@ -202,6 +202,30 @@ namespace bsmpm
 
 
   LinearSolver::Report
+  LinearSolver::solve_unchanged(const TrilinosWrappers::SparseMatrix &matrix,
+                                TrilinosWrappers::MPI::Vector        &solution,
+                                const TrilinosWrappers::MPI::Vector  &rhs,
+                                const DoFHandler<2> &dof_handler,
+                                const bool           symmetric) const
+  {
+    unchanged_matrix = true;
+    try
+      {
+        const Report report =
+          solve(matrix, solution, rhs, dof_handler, symmetric);
+        unchanged_matrix = false;
+        return report;
+      }
+    catch (...)
+      {
+        unchanged_matrix = false;
+        throw;
+      }
+  }
+
+
+
+  LinearSolver::Report
   LinearSolver::solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
                              TrilinosWrappers::MPI::Vector        &solution,
                              const TrilinosWrappers::MPI::Vector  &rhs) const
@@ -217,15 +241,21 @@ namespace bsmpm
     // Both decisions on every process alike: the factorisations are
     // collective.
     const MPI_Comm comm = matrix.get_mpi_communicator();
-    if (direct_factors &&
-        Utilities::MPI::min(
-          (direct_matrix == &A && direct_structure == structure) ? 1 : 0,
-          comm) == 1 &&
-        Utilities::MPI::min(direct_factors->refactorize(A) ==
-                                DirectSolver::Status::success ?
-                              1 :
-                              0,
-                            comm) == 1)
+    const bool     same_structure =
+      direct_factors &&
+      Utilities::MPI::min(
+        (direct_matrix == &A && direct_structure == structure) ? 1 : 0, comm) ==
+        1;
+    // The matrix of the last factorisation, unchanged (solve_unchanged()):
+    // its factors serve.
+    if (same_structure && unchanged_matrix)
+      report.method = direct_method;
+    else if (same_structure &&
+             Utilities::MPI::min(direct_factors->refactorize(A) ==
+                                     DirectSolver::Status::success ?
+                                   1 :
+                                   0,
+                                 comm) == 1)
       report.method = direct_method;
     DirectSolver::Status mumps = DirectSolver::Status::unavailable;
     DirectSolver::Status klu   = DirectSolver::Status::unavailable;

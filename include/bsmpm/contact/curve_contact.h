@@ -10,6 +10,7 @@
 
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/contact/rigid_body.h>
+#include <bsmpm/contact/rigid_body_motion.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 
@@ -73,6 +74,20 @@ namespace bsmpm
       return bodies;
     }
 
+    /** Where the bodies are in the present increment, and the unknowns of
+     * the force-controlled ones with the bordered terms of the last
+     * add_newton_terms(). */
+    RigidBodyMotion &
+    motion()
+    {
+      return body_motion;
+    }
+
+    /** The bodies' outlines where the last finish_increment() left them
+     * (closed polylines), for output. */
+    std::vector<std::vector<Point<2>>>
+    outlines() const;
+
     /**
      * Starts a load increment from load factor @p from to @p to: collects
      * the Gauss points of the curves' free pieces in locally owned cells
@@ -89,7 +104,9 @@ namespace bsmpm
     /**
      * Adds the contact forces on the body at the increment @p increment
      * (ghosted; @p prescribed as for the points) to @p force and their
-     * derivative (with a minus: a stiffness) to @p tangent. Returns
+     * derivative (with a minus: a stiffness) to @p tangent, and, for bodies
+     * under a force, the bordered terms and the bodies' residual to
+     * motion(). Returns
      * whether the tangent stays symmetric (no Gauss point slides), over
      * all processes.
      */
@@ -151,6 +168,15 @@ namespace bsmpm
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 
   private:
+    /** For body @p b with a force-controlled component that none of the
+     * candidate Gauss points touch at the start of the iterations: moves
+     * it along its force until it touches the nearest (a body that touches
+     * nothing has no stiffness against its free motion), and notes it in
+     * motion(). Throws if nothing within reach lies in that direction.
+     * Collective. */
+    void
+    touch_if_free(const unsigned int b, const BackgroundGrid &grid);
+
     /** A piece of free curve in one locally owned cell that can touch a
      * rigid body in the increment, with its Gauss points at the
      * increment's start. */
@@ -195,16 +221,34 @@ namespace bsmpm
       /** Force on the body (N) and the piece's share of the rigid body's
        * reaction is its opposite. */
       Tensor<1, 2> resultant;
-      /** On the cell's DoFs: the force and minus its derivative. */
+      /** On the cell's DoFs and, as two more, the body's translation
+       * (x, y) at the increment's end: the force and minus its
+       * derivative. */
       Vector<double>     force;
       FullMatrix<double> stiffness;
     };
 
+    /** What contact does on @p piece at the nodal increment @p d of its
+     * cell, with the body moved by @p body_shift from where motion() has
+     * it (for the differences of tangent_error()). */
     PieceState
     evaluate(const ContactPiece              &piece,
              const BackgroundGrid            &grid,
              const Q1CellKernel              &kernel,
-             const Q1CellKernel::LocalVector &d) const;
+             const Q1CellKernel::LocalVector &d,
+             const Tensor<1, 2> &body_shift = Tensor<1, 2>()) const;
+
+    /** The largest difference of the stiffness of @p state (the piece's
+     * at @p increment) from central differences of its forces, relative
+     * to the stiffness's largest entry ('Contact/Check tangent'). */
+    double
+    tangent_error(
+      const ContactPiece                               &piece,
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const PieceState                                 &state,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
 
     /** As above, at the nodal increment of the piece's cell (its DoFs
      * into @p dof_indices). */
@@ -217,8 +261,12 @@ namespace bsmpm
              std::vector<types::global_dof_index> &dof_indices) const;
 
     std::vector<RigidBody> bodies;
-    double                 gamma          = 10;
-    unsigned int           n_gauss_points = 4;
+    RigidBodyMotion        body_motion;
+    double                 gamma         = 10;
+    bool                   check_tangent = false;
+    /** On this process, of all checks of the run (check_tangent). */
+    double       largest_tangent_error = 0;
+    unsigned int n_gauss_points        = 4;
 
     double                    penalty = 0;
     double                    from = 0, to = 0;

@@ -6,6 +6,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <string>
@@ -86,8 +87,10 @@ namespace bsmpm
 
   /**
    * A rigid body of a scene (subsection "Rigid body N"): its shape, its
-   * prescribed translation as a function of the load factor, and the
-   * friction of its surface with the body's boundary curves.
+   * motion (per component of its translation either prescribed as a
+   * function of the load factor, or free under an applied force and solved
+   * for: RigidBodyMotion), and the friction of its surface with the body's
+   * boundary curves.
    */
   class RigidBody
   {
@@ -118,38 +121,61 @@ namespace bsmpm
       return body_name;
     }
 
-    /** The body's translation at load factor @p t. */
+    /** Whether component @p d (0: x, 1: y) of the body's translation is
+     * force-controlled ('free' in Displacement): solved for, so that the
+     * contact forces balance the applied Force (RigidBodyMotion). */
+    bool
+    force_controlled(const unsigned int d) const
+    {
+      return free_component[d];
+    }
+
+    /** Whether any component is force-controlled. */
+    bool
+    has_free_motion() const
+    {
+      return free_component[0] || free_component[1];
+    }
+
+    /** The prescribed translation at load factor @p t (zero in the
+     * force-controlled components). */
     Tensor<1, 2>
     displacement(const double t) const;
 
-    /** The nearest point of the body's outline, translated to load factor
-     * @p t, to @p x. */
+    /** The applied force on the body at load factor @p t, N/m (zero in the
+     * displacement-controlled components). */
+    Tensor<1, 2>
+    applied_force(const double t) const;
+
+    /** The nearest point of the body's outline, translated by
+     * @p translation, to @p x. */
     SurfacePoint
-    nearest(const Point<2> &x, const double t) const
+    nearest(const Point<2> &x, const Tensor<1, 2> &translation) const
     {
-      return shape->nearest(x - displacement(t));
+      return shape->nearest(x - translation);
     }
 
     /** As nearest(), to part @p feature of the outline (RigidShape::
      * to_feature()). */
     SurfacePoint
-    to_feature(const Point<2>    &x,
-               const double       t,
-               const unsigned int feature) const
+    to_feature(const Point<2>     &x,
+               const Tensor<1, 2> &translation,
+               const unsigned int  feature) const
     {
-      return shape->to_feature(x - displacement(t), feature);
+      return shape->to_feature(x - translation, feature);
     }
 
-    /** Whether @p x lies further than @p distance from the body at load
-     * factor @p t (a cheap test that may answer false for far points). */
+    /** Whether @p x lies further than @p distance from the body translated
+     * by @p translation (a cheap test that may answer false for far
+     * points). */
     bool
-    surely_further_than(const Point<2> &x,
-                        const double    t,
-                        const double    distance) const;
+    surely_further_than(const Point<2>     &x,
+                        const Tensor<1, 2> &translation,
+                        const double        distance) const;
 
-    /** The outline at load factor @p t (closed polyline). */
+    /** The outline translated by @p translation (closed polyline). */
     std::vector<Point<2>>
-    outline(const double t) const;
+    outline(const Tensor<1, 2> &translation) const;
 
     Friction
     friction() const
@@ -165,9 +191,19 @@ namespace bsmpm
     }
 
   private:
+    /** Reads Displacement and Force of the subsection @p where into
+     * @p body. */
+    static void
+    read_motion(ParameterHandler  &prm,
+                const std::string &where,
+                RigidBody         &body);
+
     std::string                        body_name;
     std::shared_ptr<const RigidShape>  shape;
     std::shared_ptr<FunctionParser<1>> motion;
+    /** The applied force, 'fx; fy' of the load factor. */
+    std::shared_ptr<FunctionParser<1>> force;
+    std::array<bool, 2>                free_component   = {{false, false}};
     Friction                           surface_friction = Friction::smooth;
     double                             mu               = 0;
   };

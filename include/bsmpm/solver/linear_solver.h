@@ -78,6 +78,17 @@ namespace bsmpm
           const DoFHandler<2>                  &dof_handler,
           const bool                            symmetric = true) const;
 
+    /** As solve(), for the @p matrix of the last solve() unchanged since:
+     * the direct solver's factors serve as they are, with no new
+     * factorisation (the further right-hand sides of a bordered system,
+     * RigidBodyMotion). */
+    Report
+    solve_unchanged(const TrilinosWrappers::SparseMatrix &matrix,
+                    TrilinosWrappers::MPI::Vector        &solution,
+                    const TrilinosWrappers::MPI::Vector  &rhs,
+                    const DoFHandler<2>                  &dof_handler,
+                    const bool symmetric = true) const;
+
     /**
      * An estimate of the spectral condition number of @p matrix: the ratio
      * of the extreme eigenvalues of the Lanczos tridiagonal matrix that
@@ -175,9 +186,12 @@ namespace bsmpm
      * name: a matrix of the same structure is factorised again with the
      * same symbolic analysis. */
     mutable std::unique_ptr<DirectSolver> direct_factors;
-    mutable const void                   *direct_matrix    = nullptr;
-    mutable std::uint64_t                 direct_structure = 0;
-    mutable std::string                   direct_method;
+    /** Within solve_unchanged(): the kept factors are those of the
+     * matrix. */
+    mutable bool          unchanged_matrix = false;
+    mutable const void   *direct_matrix    = nullptr;
+    mutable std::uint64_t direct_structure = 0;
+    mutable std::string   direct_method;
 
     /** The AMG hierarchy of the last CG solve, the matrix it was built on
      * and a fingerprint of that matrix's structure (the pattern and the
