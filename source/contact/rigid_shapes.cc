@@ -444,35 +444,19 @@ namespace bsmpm
         return Tensor<1, 2>({d[1], -d[0]});
       }
 
-      /** Updates @p best with the nearest point of segment @p k to x: its
-       * ends and the minima of the distance inside it (as
-       * BSplineCurve::closest_point()). */
+      /** Updates @p best with the nearest point of segment @p k to x. */
       void
       consider_segment(const unsigned int k,
                        const Point<2>    &x,
                        Closest           &best) const
       {
-        const auto consider = [&](const double t) {
-          const Point<2> q = value(k, t);
-          if (q.distance(x) < best.distance)
-            best = {k, t, q, q.distance(x)};
-        };
-        const auto f = [&](const double t) {
-          const Tensor<1, 2> r = value(k, t) - x, d = derivative(k, t);
-          return std::array<double, 2>{
-            {r * d, d * d + r * second_derivative(k, t)}};
-        };
-        consider(0.);
-        consider(1.);
-        constexpr unsigned int n_samples = 16;
-        double                 f_last    = f(0.)[0];
-        for (unsigned int j = 1; j <= n_samples; ++j)
+        const BSplineCurve::ClosestPoint c = curve.closest_point(x, k);
+        if (c.distance < best.distance)
           {
-            const double t0 = double(j - 1) / n_samples,
-                         t1 = double(j) / n_samples, f1 = f(t1)[0];
-            if (f_last < 0 && f1 >= 0)
-              consider(internal::safeguarded_newton(f, t0, t1));
-            f_last = f1;
+            // The segment's ends are its parameters exactly: t is 0 or 1
+            // there.
+            const auto u = curve.segment_parameters(k);
+            best = {k, (c.u - u[0]) / (u[1] - u[0]), c.point, c.distance};
           }
       }
 

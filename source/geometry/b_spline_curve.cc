@@ -408,38 +408,49 @@ namespace bsmpm
   BSplineCurve::ClosestPoint
   BSplineCurve::closest_point(const Point<2> &p) const
   {
-    ClosestPoint best{0., points[0], points[0].distance(p)};
-    for (unsigned int k = 0; k < n_segments(); ++k)
+    ClosestPoint best = closest_point(p, 0);
+    for (unsigned int k = 1; k < n_segments(); ++k)
       {
-        const Bezier &P        = segments[k];
-        const auto    consider = [&](const double t) {
-          const Point<2> x = bezier_value(P, t);
-          if (x.distance(p) < best.distance)
-            best = {t == 1 ? breaks[k + 1] :
-                                breaks[k] + t * (breaks[k + 1] - breaks[k]),
-                    x,
-                    x.distance(p)};
-        };
-        // f = (B - p).B' is zero where the distance is stationary; where it
-        // goes from negative to positive the distance has a local minimum.
-        const auto f = [&](const double t) {
-          const Tensor<1, 2> r = bezier_value(P, t) - p,
-                             d = bezier_derivative(P, t);
-          return std::array<double, 2>{
-            {r * d, d * d + r * bezier_second_derivative(P, t)}};
-        };
-        consider(0.);
-        consider(1.);
-        const unsigned int n_samples = 16;
-        double             f_last    = f(0.)[0];
-        for (unsigned int j = 1; j <= n_samples; ++j)
-          {
-            const double t0 = double(j - 1) / n_samples,
-                         t1 = double(j) / n_samples, f1 = f(t1)[0];
-            if (f_last < 0 && f1 >= 0)
-              consider(internal::safeguarded_newton(f, t0, t1));
-            f_last = f1;
-          }
+        const ClosestPoint c = closest_point(p, k);
+        if (c.distance < best.distance)
+          best = c;
+      }
+    return best;
+  }
+
+
+
+  BSplineCurve::ClosestPoint
+  BSplineCurve::closest_point(const Point<2> &p, const unsigned int k) const
+  {
+    const Bezier &P = segments[k];
+    ClosestPoint  best{breaks[k], P[0], P[0].distance(p)};
+    const auto    consider = [&](const double t) {
+      const Point<2> x = bezier_value(P, t);
+      if (x.distance(p) < best.distance)
+        best = {t == 1 ? breaks[k + 1] :
+                            breaks[k] + t * (breaks[k + 1] - breaks[k]),
+                x,
+                x.distance(p)};
+    };
+    // f = (B - p).B' is zero where the distance is stationary; where it
+    // goes from negative to positive the distance has a local minimum.
+    const auto f = [&](const double t) {
+      const Tensor<1, 2> r = bezier_value(P, t) - p,
+                         d = bezier_derivative(P, t);
+      return std::array<double, 2>{
+        {r * d, d * d + r * bezier_second_derivative(P, t)}};
+    };
+    consider(1.);
+    const unsigned int n_samples = 16;
+    double             f_last    = f(0.)[0];
+    for (unsigned int j = 1; j <= n_samples; ++j)
+      {
+        const double t0 = double(j - 1) / n_samples, t1 = double(j) / n_samples,
+                     f1 = f(t1)[0];
+        if (f_last < 0 && f1 >= 0)
+          consider(internal::safeguarded_newton(f, t0, t1));
+        f_last = f1;
       }
     return best;
   }

@@ -136,6 +136,11 @@ namespace bsmpm
     ClosestPoint
     closest_point(const Point<2> &p) const;
 
+    /** The point of segment @p k nearest to @p p (its ends included; u
+     * is exactly the segment's end parameter there). */
+    ClosestPoint
+    closest_point(const Point<2> &p, const unsigned int k) const;
+
     /** The smallest axis-aligned box holding the curve. */
     BoundingBox<2>
     bounding_box() const;
