@@ -348,7 +348,7 @@ namespace bsmpm
         constexpr unsigned int samples = 8;
         for (unsigned int k = 0; k < n_points; ++k)
           for (unsigned int i = 0; i < samples; ++i)
-            line.push_back(value(k, double(i) / samples));
+            line.push_back(curve.segment_value(k, double(i) / samples));
         line.push_back(line.front());
         return line;
       }
@@ -398,36 +398,10 @@ namespace bsmpm
         return (k + n_points - 1) % n_points;
       }
 
-      Point<2>
-      value(const unsigned int k, const double t) const
-      {
-        const auto  &P = curve.bezier_control_points(k);
-        const double s = 1 - t;
-        return Point<2>(s * s * s * P[0] + 3 * s * s * t * P[1] +
-                        3 * s * t * t * P[2] + t * t * t * P[3]);
-      }
-
-      Tensor<1, 2>
-      derivative(const unsigned int k, const double t) const
-      {
-        const auto  &P = curve.bezier_control_points(k);
-        const double s = 1 - t;
-        return 3 * (s * s * (P[1] - P[0]) + 2 * s * t * (P[2] - P[1]) +
-                    t * t * (P[3] - P[2]));
-      }
-
-      Tensor<1, 2>
-      second_derivative(const unsigned int k, const double t) const
-      {
-        const auto &P = curve.bezier_control_points(k);
-        return 6 * ((1 - t) * (P[2] - 2 * P[1] + P[0]) +
-                    t * (P[3] - 2 * P[2] + P[1]));
-      }
-
       Tensor<1, 2>
       tangent(const unsigned int k, const double t) const
       {
-        Tensor<1, 2> d = derivative(k, t);
+        Tensor<1, 2> d = curve.segment_derivative(k, t);
         if (d.norm() == 0.)
           {
             const auto &P = curve.bezier_control_points(k);
@@ -472,8 +446,8 @@ namespace bsmpm
         s.feature            = feature;
         s.normal             = normal(best.k, best.t);
         s.gap                = (x - best.point) * s.normal;
-        const Tensor<1, 2> d = derivative(best.k, best.t),
-                           e = second_derivative(best.k, best.t);
+        const Tensor<1, 2> d = curve.segment_derivative(best.k, best.t),
+                           e = curve.segment_second_derivative(best.k, best.t);
         const double kappa =
           (d[0] * e[1] - d[1] * e[0]) / std::pow(d.norm(), 3);
         if (kappa > 0 && 1 / kappa + s.gap > 0)

@@ -405,6 +405,31 @@ namespace bsmpm
 
 
 
+  Point<2>
+  BSplineCurve::segment_value(const unsigned int k, const double t) const
+  {
+    return bezier_value(segments[k], t);
+  }
+
+
+
+  Tensor<1, 2>
+  BSplineCurve::segment_derivative(const unsigned int k, const double t) const
+  {
+    return bezier_derivative(segments[k], t);
+  }
+
+
+
+  Tensor<1, 2>
+  BSplineCurve::segment_second_derivative(const unsigned int k,
+                                          const double       t) const
+  {
+    return bezier_second_derivative(segments[k], t);
+  }
+
+
+
   BSplineCurve::ClosestPoint
   BSplineCurve::closest_point(const Point<2> &p) const
   {

@@ -132,6 +132,19 @@ namespace bsmpm
     double
     length(const double u0, const double u1) const;
 
+    /** The point of segment @p k at its local parameter @p t in [0, 1], and
+     * its first and second derivatives by t. Unlike value() and
+     * derivative(), t = 1 is the end of segment @p k, where a corner's
+     * incoming tangent is. */
+    Point<2>
+    segment_value(const unsigned int k, const double t) const;
+
+    Tensor<1, 2>
+    segment_derivative(const unsigned int k, const double t) const;
+
+    Tensor<1, 2>
+    segment_second_derivative(const unsigned int k, const double t) const;
+
     /** The point of the curve nearest to @p p. */
     ClosestPoint
     closest_point(const Point<2> &p) const;
