@@ -277,9 +277,16 @@ namespace bsmpm
               << " m per step\n";
       }
     else
-      collapse_detector.initialize(constitutive_update != nullptr,
+      // A limit load needs a material that yields (or large deformation):
+      // contact alone makes the run nonlinear, but an elastic body in
+      // contact has none. Under a rigid body that the load factor moves,
+      // the run follows the mechanism (as under a prescribed displacement);
+      // under one held or force-controlled, the load factor scales loads.
+      collapse_detector.initialize(constitutive_update != nullptr &&
+                                     (!constitutive_model->is_linear() ||
+                                      finite_strain()),
                                    boundary_curves.prescribe_displacement() ||
-                                     contact.enabled());
+                                     contact.moves_bodies_with_load());
     // The friction history lives in memory only.
     AssertThrow(!(contact.enabled() && checkpoint.resuming()),
                 ExcMessage("A run with rigid bodies cannot be resumed from a "

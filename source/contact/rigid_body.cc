@@ -311,6 +311,18 @@ namespace bsmpm
 
 
 
+  bool
+  RigidBody::moves_with_load() const
+  {
+    const Tensor<1, 2> start = displacement(0);
+    for (const double t : {0.25, 0.5, 0.75, 1.})
+      if ((displacement(t) - start).norm() > 0)
+        return true;
+    return false;
+  }
+
+
+
   Tensor<1, 2>
   RigidBody::applied_force(const double t) const
   {

@@ -191,10 +191,13 @@ namespace bsmpm
                 << " motion (its stiffness in that direction is " << S(k, k)
                 << " N/m^2, that of one cell in contact " << scale
                 << "): it touches no boundary curve (a force that pulls it "
-                   "off), or only a smooth one across that direction. Place "
-                   "it touching the body, make its surface rough or "
-                   "frictional, or prescribe that component "
-                   "(Displacement).";
+                   "off), only a smooth one across that direction, or "
+                   "material that yields freely under it (a force beyond "
+                   "the limit load). Place it touching the body, make its "
+                   "surface rough or frictional, prescribe that component "
+                   "(Displacement), or, beyond a limit load, ramp the force "
+                   "of a plastic material: the run then ends at the limit "
+                   "load (doc/limit-loads.md).";
         AssertThrow(S(k, k) > 1e-10 * scale, ExcMessage(message.str()));
       }
     if (m == 2)

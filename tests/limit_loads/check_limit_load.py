@@ -16,12 +16,20 @@ parser.add_argument("--bsmpm", required=True)
 parser.add_argument("--prm", required=True)
 parser.add_argument("--lower", type=float, required=True)
 parser.add_argument("--upper", type=float, required=True)
+parser.add_argument("--set", action="append", default=[],
+                    help="a parameter assignment passed on to bsmpm")
+parser.add_argument("--np", type=int, default=1,
+                    help="processes (mpirun) for the run")
 args = parser.parse_args()
 
 with tempfile.TemporaryDirectory() as directory:
+    launcher = [] if args.np == 1 else [
+        "mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(args.np)]
+    assignments = [a for value in args.set for a in ("--set", value)]
     run = subprocess.run(
+        launcher +
         [str(pathlib.Path(args.bsmpm).resolve()), str(pathlib.Path(args.prm).resolve()),
-         "--set", f"Output/Directory={directory}"],
+         "--set", f"Output/Directory={directory}"] + assignments,
         capture_output=True, text=True, cwd=pathlib.Path(args.prm).parent)
     print(run.stdout[-2000:])
     if run.returncode != 0:

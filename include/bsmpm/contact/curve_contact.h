@@ -14,6 +14,7 @@
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 
+#include <algorithm>
 #include <map>
 #include <ostream>
 #include <string>
@@ -66,6 +67,16 @@ namespace bsmpm
     enabled() const
     {
       return !bodies.empty();
+    }
+
+    /** Whether the load factor moves a rigid body (RigidBody::
+     * moves_with_load()). */
+    bool
+    moves_bodies_with_load() const
+    {
+      return std::any_of(bodies.begin(), bodies.end(), [](const auto &body) {
+        return body.moves_with_load();
+      });
     }
 
     const std::vector<RigidBody> &

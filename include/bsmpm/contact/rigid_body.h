@@ -137,6 +137,14 @@ namespace bsmpm
       return free_component[0] || free_component[1];
     }
 
+    /** Whether the load factor moves the body: a prescribed component
+     * whose translation differs between load factors 0, 1/4, .., 1 (a
+     * component held in place, '0', does not; with only held and
+     * force-controlled components the load factor scales forces, and a
+     * run under it can reach a limit load: CollapseDetector). */
+    bool
+    moves_with_load() const;
+
     /** The prescribed translation at load factor @p t (zero in the
      * force-controlled components). */
     Tensor<1, 2>
