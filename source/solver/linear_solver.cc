@@ -75,6 +75,25 @@ namespace bsmpm
                       Patterns::Integer(1, 20),
                       "cg gmg: degree of the Chebyshev smoother (matrix-"
                       "vector products per smoothing step on each level).");
+    prm.declare_entry(
+      "Multigrid smoother",
+      "jacobi",
+      Patterns::Selection("jacobi|vertex patch|cell patch"),
+      "cg gmg: what the Chebyshev smoother is preconditioned by on each "
+      "level: jacobi (the inverse diagonal), vertex patch (additive Schwarz "
+      "over the unknowns of the 2 x 2 cells around each vertex, 18 per "
+      "patch, each block inverted at set-up) or cell patch (additive "
+      "Schwarz over the 4 vertices of each cell, 8 unknowns per patch). "
+      "The patches resolve the couplings of yielding (nearly isochoric) "
+      "material that a point-wise smoother cannot reduce; they cost about "
+      "9 (vertex) or 2 (cell) matrix-vector products per application "
+      "(measured, doc/benchmarks.md).");
+    prm.declare_entry("Multigrid patch levels",
+                      "0",
+                      Patterns::Integer(0),
+                      "cg gmg with a patch smoother: the patches on the "
+                      "finest this many levels, point Jacobi on the coarser "
+                      "ones; 0: on every smoothed level.");
     prm.declare_entry("Multigrid coarse size",
                       "2000",
                       Patterns::Integer(1),
@@ -165,6 +184,13 @@ namespace bsmpm
     condition_iterations     = prm.get_integer("Condition estimate iterations");
     gmg_data.smoother_degree = prm.get_integer("Multigrid smoother degree");
     gmg_data.coarse_size     = prm.get_integer("Multigrid coarse size");
+    const std::string blocks = prm.get("Multigrid smoother");
+    gmg_data.blocks =
+      blocks == "vertex patch" ?
+        GeometricMultigrid::Blocks::vertex_patch :
+        (blocks == "cell patch" ? GeometricMultigrid::Blocks::cell_patch :
+                                  GeometricMultigrid::Blocks::point);
+    gmg_data.patch_levels = prm.get_integer("Multigrid patch levels");
     prm.leave_subsection();
   }
 
