@@ -148,7 +148,8 @@ namespace bsmpm
     // The blocks A_p and their inverses.
     inverse_start.assign(1, 0);
     inverses.clear();
-    std::vector<int> position(n_local, -1);
+    std::vector<int>    position(n_local, -1);
+    std::vector<double> inverse_scratch;
     for (std::size_t p = 0; p + 1 < patch_start.size(); ++p)
       {
         const unsigned int n        = patch_start[p + 1] - patch_start[p];
@@ -171,7 +172,11 @@ namespace bsmpm
           }
         for (unsigned int a = 0; a < n; ++a)
           position[unknowns[a]] = -1;
-        append_inverse(block, inverses);
+        append_inverse(block, inverse_scratch);
+        inverses.insert(inverses.end(),
+                        inverse_scratch.begin(),
+                        inverse_scratch.end());
+        inverse_scratch.clear();
         inverse_start.push_back(inverses.size());
       }
 
@@ -204,7 +209,7 @@ namespace bsmpm
       {
         const std::size_t n        = patch_start[p + 1] - patch_start[p];
         const int        *unknowns = &patch_unknowns[patch_start[p]];
-        const double     *inverse  = &inverses[inverse_start[p]];
+        const float      *inverse  = &inverses[inverse_start[p]];
         for (std::size_t a = 0; a < n; ++a)
           local_r[a] = r[unknowns[a]];
         for (std::size_t a = 0; a < n; ++a)
