@@ -450,7 +450,9 @@ namespace bsmpm
               level.ny,
               data.blocks == GeometricMultigrid::Blocks::vertex_patch ?
                 VertexPatchSmoother::Patch::vertex :
-                VertexPatchSmoother::Patch::cell);
+                (data.blocks == GeometricMultigrid::Blocks::cell_patch ?
+                   VertexPatchSmoother::Patch::cell :
+                   VertexPatchSmoother::Patch::large));
           }
 
         // The largest eigenvalue of D^-1 A from the Lanczos process of a

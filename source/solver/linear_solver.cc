@@ -78,16 +78,19 @@ namespace bsmpm
     prm.declare_entry(
       "Multigrid smoother",
       "jacobi",
-      Patterns::Selection("jacobi|vertex patch|cell patch"),
+      Patterns::Selection("jacobi|vertex patch|cell patch|large patch"),
       "cg gmg: what the Chebyshev smoother is preconditioned by on each "
-      "level: jacobi (the inverse diagonal), vertex patch (additive Schwarz "
-      "over the unknowns of the 2 x 2 cells around each vertex, 18 per "
-      "patch, each block inverted at set-up) or cell patch (additive "
-      "Schwarz over the 4 vertices of each cell, 8 unknowns per patch). "
-      "The patches resolve the couplings of yielding (nearly isochoric) "
-      "material that a point-wise smoother cannot reduce; they cost about "
-      "9 (vertex) or 2 (cell) matrix-vector products per application "
-      "(measured, doc/benchmarks.md).");
+      "level: jacobi (the inverse diagonal), or additive Schwarz over "
+      "patches whose blocks of the level's matrix are inverted at set-up: "
+      "vertex patch (the 2 x 2 cells around each vertex, 18 unknowns), "
+      "cell patch (the 4 vertices of each cell, 8 unknowns) or large patch "
+      "(the 3 x 3 cells around each cell, 32 unknowns). On yielding "
+      "(plastic) tangents the vertex and cell patches need 3-4x and "
+      "2.5-3x fewer CG iterations than jacobi, but cost more per "
+      "iteration: the cell patch about as much time as jacobi, the vertex "
+      "patch up to twice; neither beat the direct solver on the plastic "
+      "footing or cylinder at h = 1/16 and 1/32 (measured, "
+      "doc/benchmarks.md).");
     prm.declare_entry("Multigrid patch levels",
                       "0",
                       Patterns::Integer(0),
@@ -188,8 +191,10 @@ namespace bsmpm
     gmg_data.blocks =
       blocks == "vertex patch" ?
         GeometricMultigrid::Blocks::vertex_patch :
-        (blocks == "cell patch" ? GeometricMultigrid::Blocks::cell_patch :
-                                  GeometricMultigrid::Blocks::point);
+        (blocks == "cell patch" ?
+           GeometricMultigrid::Blocks::cell_patch :
+           (blocks == "large patch" ? GeometricMultigrid::Blocks::large_patch :
+                                      GeometricMultigrid::Blocks::point));
     gmg_data.patch_levels = prm.get_integer("Multigrid patch levels");
     prm.leave_subsection();
   }

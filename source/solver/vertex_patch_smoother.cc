@@ -115,18 +115,23 @@ namespace bsmpm
                   place[k][2]] = k;
 
     // Anchors and the vertex ranges of their patches.
+    // Anchors (vertices or cells) and the vertex range [i - below, i +
+    // above] of their patches, clipped to the grid.
     const bool         by_vertex = patch == Patch::vertex;
     const unsigned int ax        = by_vertex ? nx + 1 : nx,
                        ay        = by_vertex ? ny + 1 : ny;
+    const unsigned int below     = patch == Patch::cell ? 0 : 1;
+    const unsigned int above     = patch == Patch::large ? 2 : 1;
     patch_start.assign(1, 0);
     patch_unknowns.clear();
     std::vector<bool> in_patch(n_local, false);
     for (unsigned int j = 0; j < ay; ++j)
       for (unsigned int i = 0; i < ax; ++i)
         {
-          const unsigned int i0 = by_vertex ? (i > 0 ? i - 1 : 0) : i;
-          const unsigned int j0 = by_vertex ? (j > 0 ? j - 1 : 0) : j;
-          const unsigned int i1 = std::min(i + 1, nx), j1 = std::min(j + 1, ny);
+          const unsigned int i0    = i > below ? i - below : 0;
+          const unsigned int j0    = j > below ? j - below : 0;
+          const unsigned int i1    = std::min(i + above, nx);
+          const unsigned int j1    = std::min(j + above, ny);
           const std::size_t  first = patch_unknowns.size();
           for (unsigned int b = j0; b <= j1; ++b)
             for (unsigned int a = i0; a <= i1; ++a)

@@ -72,12 +72,14 @@ namespace bsmpm
     /** What the Chebyshev smoother is preconditioned by on a level: the
      * inverse diagonal (point Jacobi) or the additive Schwarz method of a
      * VertexPatchSmoother over vertex patches (the 2 x 2 cells around each
-     * vertex) or cell patches (the 4 vertices of each cell). */
+     * vertex), cell patches (the 4 vertices of each cell) or large
+     * patches (the 3 x 3 cells around each cell). */
     enum class Blocks
     {
       point,
       vertex_patch,
-      cell_patch
+      cell_patch,
+      large_patch
     };
 
     struct AdditionalData

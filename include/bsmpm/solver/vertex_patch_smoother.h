@@ -38,6 +38,8 @@ namespace bsmpm
    *   2 x 2 cells around it (18 for an interior vertex);
    * - cell: for every cell, the unknowns of its 4 vertices (8), whose
    *   basis functions live on the 3 x 3 cells around it.
+   * - large: for every cell, the unknowns of the 4 x 4 vertices of the
+   *   3 x 3 cells around it (32).
    *
    * Only unknowns whose row couples off the diagonal enter a patch; the
    * others (constrained unknowns, empty cells) get the inverse diagonal.
@@ -50,7 +52,8 @@ namespace bsmpm
     enum class Patch
     {
       vertex,
-      cell
+      cell,
+      large
     };
 
     /** Builds the patches and inverts their blocks. @p place gives for
