@@ -142,6 +142,8 @@ namespace bsmpm
                   if (k >= 0)
                     patch_unknowns.push_back(k);
                 }
+          // vmult() gathers a patch into arrays of 64 (at most 32 here).
+          AssertThrow(patch_unknowns.size() - first <= 64, ExcInternalError());
           if (patch_unknowns.size() > first)
             {
               for (std::size_t q = first; q < patch_unknowns.size(); ++q)
