@@ -455,7 +455,8 @@ namespace bsmpm
                    VertexPatchSmoother::Patch::large));
           }
 
-        // The largest eigenvalue of D^-1 A from the Lanczos process of a
+        // The largest eigenvalue of D^-1 A (or B A with the patches' B)
+        // from the Lanczos process of a
         // few CG steps, started from a vector with high-frequency content
         // that depends on the global index only (the same at any number of
         // processes on the coarse levels).

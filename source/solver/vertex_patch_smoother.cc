@@ -15,10 +15,11 @@ namespace bsmpm
 {
   namespace
   {
-    /** @p block's inverse, row by row, appended to @p inverse. Cholesky
-     * for a symmetric block; a block that is not positive definite (or
-     * not symmetric) by LU, and a singular one by the pseudo-inverse of its
-     * SVD: its null space gets no correction from this patch. */
+    /** @p block's inverse, row by row, appended to @p inverse: Cholesky
+     * for a symmetric block, LU for an unsymmetric one (GMRES), and the
+     * pseudo-inverse of its SVD where that fails (a singular block, or a
+     * symmetric one that is not positive definite): the null space then
+     * gets no correction from this patch. */
     void
     append_inverse(const LAPACKFullMatrix<double> &block,
                    std::vector<double>            &inverse)
