@@ -456,10 +456,10 @@ namespace bsmpm
           }
 
         // The largest eigenvalue of D^-1 A (or B A with the patches' B)
-        // from the Lanczos process of a
-        // few CG steps, started from a vector with high-frequency content
-        // that depends on the global index only (the same at any number of
-        // processes on the coarse levels).
+        // from the Lanczos process of a few CG steps, started from a
+        // vector with high-frequency content that depends on the global
+        // index only (the same at any number of processes on the coarse
+        // levels).
         VectorType     start(level.owned, communicator), x(start);
         Epetra_Vector &s = *start.trilinos_vector()(0);
         for (int k = 0; k < s.MyLength(); ++k)
