@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 
 #include <bsmpm/solver/geometric_multigrid.h>
+#include <bsmpm/solver/vertex_patch_smoother.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 
@@ -139,8 +141,25 @@ namespace bsmpm
       }
     };
 
+    /** The Chebyshev smoother's preconditioner on a level: the inverse
+     * diagonal, or the patches where a level has them. */
+    struct LevelPreconditioner : public Subscriptor
+    {
+      InverseDiagonal                      jacobi;
+      std::unique_ptr<VertexPatchSmoother> patches;
+
+      void
+      vmult(VectorType &dst, const VectorType &src) const
+      {
+        if (patches)
+          patches->vmult(dst, src);
+        else
+          jacobi.vmult(dst, src);
+      }
+    };
+
     using Smoother =
-      PreconditionChebyshev<LevelOperator, VectorType, InverseDiagonal>;
+      PreconditionChebyshev<LevelOperator, VectorType, LevelPreconditioner>;
 
     /** Which locally owned rows of @p matrix have no nonzero off the
      * diagonal (in the order of the row map, the ascending order of the
@@ -412,18 +431,35 @@ namespace bsmpm
         // Jacobi: the inverse diagonal, zero where the diagonal is (the
         // empty rows of a coarse operator, which the coarse correction
         // never touches: their restricted residual is zero).
-        auto        jacobi           = std::make_shared<InverseDiagonal>();
-        VectorType &inverse_diagonal = jacobi->values;
+        auto        preconditioner   = std::make_shared<LevelPreconditioner>();
+        VectorType &inverse_diagonal = preconditioner->jacobi.values;
         inverse_diagonal.reinit(level.owned, communicator);
         Epetra_Vector &d = *inverse_diagonal.trilinos_vector()(0);
         check(A.ExtractDiagonalCopy(d));
         for (int k = 0; k < d.MyLength(); ++k)
           d[k] = d[k] != 0. ? 1. / d[k] : 0.;
+        if (data.blocks != GeometricMultigrid::Blocks::point &&
+            (data.patch_levels == 0 || l < data.patch_levels))
+          {
+            preconditioner->patches = std::make_unique<VertexPatchSmoother>();
+            preconditioner->patches->initialize(
+              A,
+              *level.map,
+              level.place,
+              level.nx,
+              level.ny,
+              data.blocks == GeometricMultigrid::Blocks::vertex_patch ?
+                VertexPatchSmoother::Patch::vertex :
+                (data.blocks == GeometricMultigrid::Blocks::cell_patch ?
+                   VertexPatchSmoother::Patch::cell :
+                   VertexPatchSmoother::Patch::large));
+          }
 
-        // The largest eigenvalue of D^-1 A from the Lanczos process of a
-        // few CG steps, started from a vector with high-frequency content
-        // that depends on the global index only (the same at any number of
-        // processes on the coarse levels).
+        // The largest eigenvalue of D^-1 A (or B A with the patches' B)
+        // from the Lanczos process of a few CG steps, started from a
+        // vector with high-frequency content that depends on the global
+        // index only (the same at any number of processes on the coarse
+        // levels).
         VectorType     start(level.owned, communicator), x(start);
         Epetra_Vector &s = *start.trilinos_vector()(0);
         for (int k = 0; k < s.MyLength(); ++k)
@@ -437,7 +473,7 @@ namespace bsmpm
               if (!eigenvalues.empty())
                 lambda_max = eigenvalues.back();
             });
-          cg.solve(level.op, x, start, *jacobi);
+          cg.solve(level.op, x, start, *preconditioner);
         }
 
         typename Smoother::AdditionalData smoother_data;
@@ -446,7 +482,7 @@ namespace bsmpm
         // Lanczos approaches the largest eigenvalue from below.
         smoother_data.max_eigenvalue      = 1.2 * lambda_max;
         smoother_data.eig_cg_n_iterations = 0;
-        smoother_data.preconditioner      = jacobi;
+        smoother_data.preconditioner      = preconditioner;
         level.smoother.initialize(level.op, smoother_data);
       }
 

@@ -75,6 +75,28 @@ namespace bsmpm
                       Patterns::Integer(1, 20),
                       "cg gmg: degree of the Chebyshev smoother (matrix-"
                       "vector products per smoothing step on each level).");
+    prm.declare_entry(
+      "Multigrid smoother",
+      "jacobi",
+      Patterns::Selection("jacobi|vertex patch|cell patch|large patch"),
+      "cg gmg: what the Chebyshev smoother is preconditioned by on each "
+      "level: jacobi (the inverse diagonal), or additive Schwarz over "
+      "patches whose blocks of the level's matrix are inverted at set-up: "
+      "vertex patch (the 2 x 2 cells around each vertex, 18 unknowns), "
+      "cell patch (the 4 vertices of each cell, 8 unknowns) or large patch "
+      "(the 3 x 3 cells around each cell, 32 unknowns). On yielding "
+      "(plastic) tangents the vertex and cell patches need 3-4x and "
+      "2.5-3x fewer CG iterations than jacobi, but cost more per "
+      "iteration: the cell patch about as much time as jacobi, the vertex "
+      "patch up to twice; neither beat the direct solver on the plastic "
+      "footing or cylinder at h = 1/16 and 1/32 (measured, "
+      "doc/benchmarks.md).");
+    prm.declare_entry("Multigrid patch levels",
+                      "0",
+                      Patterns::Integer(0),
+                      "cg gmg with a patch smoother: the patches on the "
+                      "finest this many levels, point Jacobi on the coarser "
+                      "ones; 0: on every smoothed level.");
     prm.declare_entry("Multigrid coarse size",
                       "2000",
                       Patterns::Integer(1),
@@ -165,6 +187,15 @@ namespace bsmpm
     condition_iterations     = prm.get_integer("Condition estimate iterations");
     gmg_data.smoother_degree = prm.get_integer("Multigrid smoother degree");
     gmg_data.coarse_size     = prm.get_integer("Multigrid coarse size");
+    const std::string blocks = prm.get("Multigrid smoother");
+    gmg_data.blocks =
+      blocks == "vertex patch" ?
+        GeometricMultigrid::Blocks::vertex_patch :
+        (blocks == "cell patch" ?
+           GeometricMultigrid::Blocks::cell_patch :
+           (blocks == "large patch" ? GeometricMultigrid::Blocks::large_patch :
+                                      GeometricMultigrid::Blocks::point));
+    gmg_data.patch_levels = prm.get_integer("Multigrid patch levels");
     prm.leave_subsection();
   }
 

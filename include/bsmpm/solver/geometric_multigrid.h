@@ -48,10 +48,11 @@ namespace bsmpm
    * multigrid, Hackbusch, Multi-Grid Methods and Applications, 1985, ch. 3).
    *
    * The smoother is a Chebyshev polynomial in the Jacobi-preconditioned
-   * operator D^-1 A that damps the upper part [lambda_max / range,
-   * lambda_max] of its spectrum (Adams, Brezina, Hu and Tuminaro, "Parallel
-   * multigrid smoothing: polynomial versus Gauss-Seidel", J. Comput. Phys.
-   * 188 (2003): as effective as Gauss-Seidel, but made of matrix-vector
+   * operator D^-1 A (or B A with B a patch-wise additive Schwarz method,
+   * VertexPatchSmoother, see Blocks) that damps the upper part [lambda_max /
+   * range, lambda_max] of its spectrum (Adams, Brezina, Hu and Tuminaro,
+   * "Parallel multigrid smoothing: polynomial versus Gauss-Seidel", J. Comput.
+   * Phys. 188 (2003): as effective as Gauss-Seidel, but made of matrix-vector
    * products only, hence the same at any number of processes). The
    * coarsest level is factorised (KLU), or, when it is still large because
    * a count of cells is odd, approximated by one ML V-cycle. The V-cycle
@@ -68,6 +69,19 @@ namespace bsmpm
   class GeometricMultigrid : public Subscriptor
   {
   public:
+    /** What the Chebyshev smoother is preconditioned by on a level: the
+     * inverse diagonal (point Jacobi) or the additive Schwarz method of a
+     * VertexPatchSmoother over vertex patches (the 2 x 2 cells around each
+     * vertex), cell patches (the 4 vertices of each cell) or large
+     * patches (the 3 x 3 cells around each cell). */
+    enum class Blocks
+    {
+      point,
+      vertex_patch,
+      cell_patch,
+      large_patch
+    };
+
     struct AdditionalData
     {
       /** Degree of the Chebyshev smoother (matrix-vector products per
@@ -80,6 +94,10 @@ namespace bsmpm
       /** A coarsest level larger than this is approximated by ML instead of
        * factorised. */
       unsigned int direct_size = 40000;
+      /** The smoother's blocks on the finest 'patch_levels' levels (all
+       * smoothed levels if 0); point Jacobi on the coarser ones. */
+      Blocks       blocks       = Blocks::point;
+      unsigned int patch_levels = 0;
     };
 
     GeometricMultigrid();
