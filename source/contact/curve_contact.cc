@@ -41,13 +41,14 @@ namespace bsmpm
       "Tilt penalty",
       "1",
       Patterns::Double(0.),
-      "gamma_t in the penalty gamma_t max(E, kappa) / h on the tilt of "
-      "the gap along the touching part of a piece (its linear part; the "
-      "mean gap takes 'Penalty'). One pressure per cell leaves the grid "
-      "nodes under a flat rigid body free to move up and down in turn "
-      "with zero mean gap in every cell, which plastic soil does not "
-      "resist; gamma_t = 1 resists it as the elastic soil does. 0: off "
-      "(doc/contact.md).");
+      "The penalty on the tilt of the gap along the touching part of a "
+      "piece (the linear part of the gap, whose mean takes 'Penalty'), as "
+      "a factor of that penalty: 1 penalises the gap's projection on "
+      "linear functions along the piece as a whole; 0 leaves the tilt "
+      "free, as one pressure per cell did. Without it the grid nodes under "
+      "a flat rigid body may move up and down in turn with zero mean gap "
+      "in every cell, which plastic soil does not resist "
+      "(doc/contact.md, 'Deep penetration').");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),
@@ -86,7 +87,7 @@ namespace bsmpm
   {
     const double h = grid.min_cell_size();
     penalty        = gamma * stiffness / h;
-    tilt_penalty   = gamma_tilt * stiffness / h;
+    tilt_penalty   = gamma_tilt * penalty;
     from           = load_from;
     to             = load_to;
     body_motion.begin_increment(bodies, from, to);

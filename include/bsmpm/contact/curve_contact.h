@@ -274,6 +274,7 @@ namespace bsmpm
     std::vector<RigidBody> bodies;
     RigidBodyMotion        body_motion;
     double                 gamma         = 10;
+    /** The tilt's penalty as a factor of the mean gap's. */
     double                 gamma_tilt    = 1;
     double                 tilt_penalty  = 0;
     bool                   check_tangent = false;
