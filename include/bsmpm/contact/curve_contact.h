@@ -273,11 +273,11 @@ namespace bsmpm
 
     std::vector<RigidBody> bodies;
     RigidBodyMotion        body_motion;
-    double                 gamma         = 10;
+    double                 gamma = 10;
     /** The tilt's penalty as a factor of the mean gap's. */
-    double                 gamma_tilt    = 1;
-    double                 tilt_penalty  = 0;
-    bool                   check_tangent = false;
+    double gamma_tilt    = 1;
+    double tilt_penalty  = 0;
+    bool   check_tangent = false;
     /** On this process, of all checks of the run (check_tangent). */
     double       largest_tangent_error = 0;
     unsigned int n_gauss_points        = 4;
