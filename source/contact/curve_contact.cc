@@ -426,14 +426,17 @@ namespace bsmpm
     const unsigned int  n_q = piece.positions.size();
     std::vector<double> xi(n_q, 0.);
     double              s = 0, centre = 0, L = 0;
+    // The Gauss points lie in order along the curve: xi counts the arc
+    // length of those that do not touch too.
     for (unsigned int q = 0; q < n_q; ++q)
-      if (piece.touching[q])
-        {
-          xi[q] = s + piece.weights[q] / 2;
-          s += piece.weights[q];
-          centre += piece.weights[q] * xi[q];
-          L += piece.weights[q];
-        }
+      {
+        xi[q] = s + piece.weights[q] / 2;
+        s += piece.weights[q];
+        if (!piece.touching[q])
+          continue;
+        centre += piece.weights[q] * xi[q];
+        L += piece.weights[q];
+      }
     centre /= L;
     double m = 0, I = 0;
     for (unsigned int q = 0; q < n_q; ++q)
