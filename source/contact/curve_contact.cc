@@ -39,16 +39,18 @@ namespace bsmpm
       "(doc/contact.md).");
     prm.declare_entry(
       "Tilt penalty",
-      "1",
+      "0",
       Patterns::Double(0.),
-      "The penalty on the tilt of the gap along the touching part of a "
-      "piece (the linear part of the gap, whose mean takes 'Penalty'), as "
-      "a factor of that penalty: 1 penalises the gap's projection on "
-      "linear functions along the piece as a whole; 0 leaves the tilt "
-      "free, as one pressure per cell did. Without it the grid nodes under "
-      "a flat rigid body may move up and down in turn with zero mean gap "
-      "in every cell, which plastic soil does not resist "
-      "(doc/contact.md, 'Deep penetration').");
+      "Experimental: a penalty on the tilt of the gap along the touching "
+      "part of a piece (the linear part of the gap, whose mean takes "
+      "'Penalty'), as a factor of that penalty (1: the gap's projection on "
+      "linear functions along the piece as a whole; 0: off, one pressure "
+      "per cell). One pressure per cell leaves the grid nodes under a flat "
+      "rigid body free to move up and down in turn with zero mean gap in "
+      "every cell, which plastic soil does not resist. Its force does not "
+      "yet vanish where a piece's mean gap passes zero, and deep "
+      "penetrations with it fail at other steps (doc/contact.md, 'The "
+      "tilt of the gap').");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),

@@ -275,7 +275,7 @@ namespace bsmpm
     RigidBodyMotion        body_motion;
     double                 gamma = 10;
     /** The tilt's penalty as a factor of the mean gap's. */
-    double gamma_tilt    = 1;
+    double gamma_tilt    = 0;
     double tilt_penalty  = 0;
     bool   check_tangent = false;
     /** On this process, of all checks of the run (check_tangent). */
