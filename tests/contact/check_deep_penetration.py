@@ -11,10 +11,10 @@ mean, and the runs at several np agree in the force to --agree.
 Prints per step q = F_y / (B/2) (kPa), the contact length and the points
 inserted / removed on the curves.
 
-Suite (h = 0.125, 4 steps, np 1 and 2): without the tilt penalty (Contact/
-Tilt penalty = 0, the former one pressure per cell) the grid nodes under
-the base move up and down in turn, Newton cycles and steps 2 and 3 are
-cut. By hand, the full run:
+Suite (h = 0.125, 4 steps, np 1 and 2, --set "Contact/Tilt penalty=1"):
+without the tilt penalty (the default 0, one pressure per cell) the grid
+nodes under the base move up and down in turn, Newton cycles and steps 2
+and 3 are cut. By hand, the full run:
 
   python3 tests/contact/check_deep_penetration.py --bsmpm build/bsmpm \
     --prm prm/strip-footing-rigid.prm --cell-size 0.25 --steps 100 --np 1 2
