@@ -37,6 +37,20 @@ namespace bsmpm
       "about 20 the pressure of one cell per piece is over-constrained "
       "and alternates from cell to cell under a flat rigid base "
       "(doc/contact.md).");
+    prm.declare_entry(
+      "Tilt penalty",
+      "0",
+      Patterns::Double(0.),
+      "Experimental: a penalty on the tilt of the gap along the touching "
+      "part of a piece (the linear part of the gap, whose mean takes "
+      "'Penalty'), as a factor of that penalty (1: the gap's projection on "
+      "linear functions along the piece as a whole; 0: off, one pressure "
+      "per cell). One pressure per cell leaves the grid nodes under a flat "
+      "rigid body free to move up and down in turn with zero mean gap in "
+      "every cell, which plastic soil does not resist. Its force does not "
+      "yet vanish where a piece's mean gap passes zero, and deep "
+      "penetrations with it fail at other steps (doc/contact.md, 'The "
+      "tilt of the gap').");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),
@@ -55,6 +69,7 @@ namespace bsmpm
     gamma          = prm.get_double("Penalty");
     check_tangent  = prm.get_bool("Check tangent");
     n_gauss_points = prm.get_integer("Gauss points per piece");
+    gamma_tilt     = prm.get_double("Tilt penalty");
     prm.leave_subsection();
     bodies = RigidBody::create_all(prm);
     AssertThrow(bodies.empty() || gamma > 0,
@@ -74,6 +89,7 @@ namespace bsmpm
   {
     const double h = grid.min_cell_size();
     penalty        = gamma * stiffness / h;
+    tilt_penalty   = gamma_tilt * penalty;
     from           = load_from;
     to             = load_to;
     body_motion.begin_increment(bodies, from, to);
@@ -343,6 +359,7 @@ namespace bsmpm
         for (unsigned int j = 0; j < n; ++j)
           state.stiffness(i, j) += penalty / L * G[i] * G[j];
       }
+    add_tilt_terms(piece, N, surface, state);
     if (body.friction() == RigidBody::Friction::smooth)
       return state;
 
@@ -385,6 +402,79 @@ namespace bsmpm
             piece.weights[q] * state.tangential * Tensor<1, 2>({-nq[1], nq[0]});
         }
     return state;
+  }
+
+
+
+  template <typename ShapeValues>
+  void
+  CurveContact::add_tilt_terms(const ContactPiece              &piece,
+                               const ShapeValues               &N,
+                               const std::vector<SurfacePoint> &surface,
+                               PieceState                      &state) const
+  {
+    // The gap's tilt along the touching part: with xi the distance along
+    // the part from its centre (arc length of the Gauss points at the
+    // increment's start), m = int_A xi g ds and I = int_A xi^2 ds, the
+    // potential eps_t m^2 / (2 I) holds the linear part m / I of the gap.
+    // One pressure per cell leaves it free: the nodes of the cells under a
+    // flat rigid base may move up and down in turn with every cell's mean
+    // gap zero, and plastic soil does not resist that (doc/contact.md,
+    // "Deep penetration"). dm/du_i = int xi n . N_i = H_i; force -eps_t m /
+    // I H_i, stiffness eps_t / I (H H^T + m int xi (N_i . N_j - (n . N_i)
+    // (n . N_j)) / rho) where the outline turns.
+    if (tilt_penalty == 0)
+      return;
+    const unsigned int  n_q = piece.positions.size();
+    std::vector<double> xi(n_q, 0.);
+    double              s = 0, centre = 0, L = 0;
+    // The Gauss points lie in order along the curve: xi counts the arc
+    // length of those that do not touch too.
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        xi[q] = s + piece.weights[q] / 2;
+        s += piece.weights[q];
+        if (!piece.touching[q])
+          continue;
+        centre += piece.weights[q] * xi[q];
+        L += piece.weights[q];
+      }
+    centre /= L;
+    double m = 0, I = 0;
+    for (unsigned int q = 0; q < n_q; ++q)
+      if (piece.touching[q])
+        {
+          xi[q] -= centre;
+          m += piece.weights[q] * xi[q] * surface[q].gap;
+          I += piece.weights[q] * xi[q] * xi[q];
+        }
+    if (!(I > 0))
+      return;
+    const unsigned int n = state.force.size();
+    Vector<double>     H(n);
+    for (unsigned int q = 0; q < n_q; ++q)
+      if (piece.touching[q])
+        {
+          const Tensor<1, 2> &nq = surface[q].normal;
+          for (unsigned int i = 0; i < n; ++i)
+            H[i] += piece.weights[q] * xi[q] * (nq * N[q][i]);
+          // The traction -eps_t m / I xi n on the curve.
+          state.resultant +=
+            piece.weights[q] * (-tilt_penalty * m / I * xi[q]) * nq;
+          const double rho = surface[q].turning_radius;
+          if (std::isfinite(rho) && rho > 0)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                state.stiffness(i, j) +=
+                  tilt_penalty * m / I * piece.weights[q] * xi[q] / rho *
+                  (N[q][i] * N[q][j] - (nq * N[q][i]) * (nq * N[q][j]));
+        }
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        state.force[i] -= tilt_penalty * m / I * H[i];
+        for (unsigned int j = 0; j < n; ++j)
+          state.stiffness(i, j) += tilt_penalty / I * H[i] * H[j];
+      }
   }
 
 

@@ -249,6 +249,17 @@ namespace bsmpm
              const Q1CellKernel::LocalVector &d,
              const Tensor<1, 2> &body_shift = Tensor<1, 2>()) const;
 
+    /** Adds to @p state the force and stiffness of the penalty on the
+     * tilt of the gap along the piece's touching part (Contact/Tilt
+     * penalty), @p N the shape values of the Gauss points on the cell's
+     * DoFs and the body's translation. */
+    template <typename ShapeValues>
+    void
+    add_tilt_terms(const ContactPiece              &piece,
+                   const ShapeValues               &N,
+                   const std::vector<SurfacePoint> &surface,
+                   PieceState                      &state) const;
+
     /** The largest difference of the stiffness of @p state (the piece's
      * at @p increment) from central differences of its forces, relative
      * to the stiffness's largest entry ('Contact/Check tangent'). */
@@ -273,8 +284,11 @@ namespace bsmpm
 
     std::vector<RigidBody> bodies;
     RigidBodyMotion        body_motion;
-    double                 gamma         = 10;
-    bool                   check_tangent = false;
+    double                 gamma = 10;
+    /** The tilt's penalty as a factor of the mean gap's. */
+    double gamma_tilt    = 0;
+    double tilt_penalty  = 0;
+    bool   check_tangent = false;
     /** On this process, of all checks of the run (check_tangent). */
     double       largest_tangent_error = 0;
     unsigned int n_gauss_points        = 4;

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""The deep penetration of doc/contact.md: the rough rigid footing of
+prm/strip-footing-rigid.prm pushed into von Mises soil in finite strain,
+1.075 m (u/B = 0.5) over 100 load steps, the grid raised to y = 5.5 m.
+
+--steps N runs the first N of those load steps only (the footing moved
+N * 0.01075 m in N steps of the same size). The run must complete at every
+--np given, every step without a cut increment (--no-cuts), the contact
+length under the base at every step within --length of the first run's
+mean, and the runs at several np agree in the force to --agree.
+Prints per step q = F_y / (B/2) (kPa), the contact length and the points
+inserted / removed on the curves.
+
+Suite (h = 0.125, 4 steps, np 1 and 2, --set "Contact/Tilt penalty=1"):
+without the tilt penalty (the default 0, one pressure per cell) the grid
+nodes under the base move up and down in turn, Newton cycles and steps 2
+and 3 are cut. By hand, the full run:
+
+  python3 tests/contact/check_deep_penetration.py --bsmpm build/bsmpm \
+    --prm prm/strip-footing-rigid.prm --cell-size 0.25 --steps 100 --np 1 2
+"""
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+parser = argparse.ArgumentParser(description=__doc__)
+parser.add_argument("--bsmpm", required=True)
+parser.add_argument("--prm", required=True)
+parser.add_argument("--cell-size", type=float, default=0.125)
+parser.add_argument("--steps", type=int, default=100)
+parser.add_argument("--np", type=int, nargs="+", default=[1])
+parser.add_argument("--no-cuts", action="store_true")
+parser.add_argument("--length", type=float, default=0.1,
+                    help="allowed scatter of the contact length (m)")
+parser.add_argument("--agree", type=float, default=1e-6,
+                    help="relative difference of the forces between np")
+parser.add_argument("--set", action="append", default=[])
+args = parser.parse_args()
+half_width = 1.075
+problems = []
+
+
+def run(np):
+    with tempfile.TemporaryDirectory() as directory:
+        command = ([] if np == 1 else
+                   ["mpirun", "--allow-run-as-root", "--oversubscribe",
+                    "-np", str(np)])
+        command += [str(pathlib.Path(args.bsmpm).resolve()),
+                    str(pathlib.Path(args.prm).resolve()),
+                    "--set", f"Output/Directory={directory}",
+                    "--set", "Output/Interval=0",
+                    "--set", "Material/Kinematics=finite strain",
+                    "--set", "Background grid/Upper right corner=4, 5.5",
+                    "--set", f"Background grid/Cell size={args.cell_size}",
+                    "--set", f"Loading/Load steps={args.steps}",
+                    "--set", "Rigid body 1/Displacement=0; "
+                    f"{-0.01075 * args.steps}*t"]
+        for s in args.set:
+            command += ["--set", s]
+        result = subprocess.run(command, capture_output=True, text=True)
+        path = pathlib.Path(directory) / "summary.json"
+        summary = json.loads(path.read_text()) if path.exists() else None
+        if result.returncode != 0 or summary is None:
+            problems.append(f"np = {np}: exit code {result.returncode}: "
+                            f"{result.stderr[-1500:]}")
+        return summary
+
+
+summaries = {np: run(np) for np in args.np}
+for np, summary in summaries.items():
+    if summary is None:
+        continue
+    steps = summary["steps"]
+    print(f"np = {np}: {summary['status']}, {len(steps)} steps")
+    print("step  u/B    q (kPa)  contact (m)  increments  inserted/removed")
+    for s in steps:
+        q = s["quantities"]
+        inserted = sum(v for k, v in q.items() if k.endswith("_inserted"))
+        removed = sum(v for k, v in q.items() if k.endswith("_removed"))
+        print(f"{s['step']:4d}  {0.01075 * s['step'] / 2.15:.3f}  "
+              f"{q['rigid_body_1_force_y'] / half_width:8.2f}  "
+              f"{q['rigid_body_1_contact_length']:.3f}  "
+              f"{s['increments']:10d}  {int(inserted)}/{int(removed)}")
+    if len(steps) != args.steps:
+        problems.append(f"np = {np}: {len(steps)} of {args.steps} steps")
+    if args.no_cuts:
+        cut = [s["step"] for s in steps if s["increments"] != 1]
+        if cut:
+            problems.append(f"np = {np}: steps {cut} were cut")
+    lengths = [s["quantities"]["rigid_body_1_contact_length"] for s in steps]
+    mean = sum(lengths) / max(1, len(lengths))
+    far = [(s["step"], round(l, 3)) for s, l in zip(steps, lengths)
+           if abs(l - mean) > args.length]
+    if far:
+        problems.append(f"np = {np}: contact length further than "
+                        f"{args.length} m from its mean {mean:.3f}: {far}")
+
+runs = [s for s in summaries.values() if s is not None]
+for other, np in zip(runs[1:], list(summaries)[1:]):
+    for a, b in zip(runs[0]["steps"], other["steps"]):
+        fa = a["quantities"]["rigid_body_1_force_y"]
+        fb = b["quantities"]["rigid_body_1_force_y"]
+        if abs(fa - fb) > args.agree * abs(fa):
+            problems.append(f"np = {np}, step {a['step']}: force {fb} "
+                            f"against {fa} at np = {args.np[0]}")
+            break
+
+if problems:
+    sys.exit("\n".join(problems))
+print("OK")
