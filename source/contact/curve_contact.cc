@@ -37,6 +37,36 @@ namespace bsmpm
       "about 20 the pressure of one cell per piece is over-constrained "
       "and alternates from cell to cell under a flat rigid base "
       "(doc/contact.md).");
+    prm.declare_entry(
+      "Method",
+      "augmented Lagrangian",
+      Patterns::Selection("augmented Lagrangian|penalty"),
+      "How contact is imposed on the curves' pieces (doc/contact.md). "
+      "'penalty': the pressure eps times the mean penetration of a piece "
+      "(eps = Penalty max(E, kappa) / h) and, while sticking, the "
+      "tangential traction eps times the slip: the body penetrates by about "
+      "p h / (Penalty E) and slips elastically. 'augmented Lagrangian': the "
+      "same penalty with a multiplier per piece, p = max(0, lambda - eps "
+      "g), updated (Uzawa) after each converged Newton solve of the load "
+      "step until it changes by less than the Augmentation tolerance: the "
+      "mean gap of a touching piece and its slip while sticking go to "
+      "zero.");
+    prm.declare_entry(
+      "Augmentation tolerance",
+      "1e-3",
+      Patterns::Double(0., 1.),
+      "The augmented Lagrangian stops updating the multipliers of a load "
+      "step when they change by less than this fraction of their size (L2 "
+      "along the curves): the penetration left is below this fraction of "
+      "the plain penalty's.");
+    prm.declare_entry(
+      "Maximum augmentations",
+      "30",
+      Patterns::Integer(0, 1000),
+      "Multiplier updates (each one more Newton solve) per load step at "
+      "most; then the step goes on with the last multipliers, and "
+      "summary.json's contact_multiplier_change says how far they were "
+      "from converged.");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),
@@ -52,9 +82,12 @@ namespace bsmpm
   CurveContact::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact");
-    gamma          = prm.get_double("Penalty");
-    check_tangent  = prm.get_bool("Check tangent");
-    n_gauss_points = prm.get_integer("Gauss points per piece");
+    gamma                  = prm.get_double("Penalty");
+    check_tangent          = prm.get_bool("Check tangent");
+    n_gauss_points         = prm.get_integer("Gauss points per piece");
+    augmented              = prm.get("Method") == "augmented Lagrangian";
+    augmentation_tolerance = prm.get_double("Augmentation tolerance");
+    max_augmentations      = prm.get_integer("Maximum augmentations");
     prm.leave_subsection();
     bodies = RigidBody::create_all(prm);
     AssertThrow(bodies.empty() || gamma > 0,
@@ -78,6 +111,9 @@ namespace bsmpm
     to             = load_to;
     body_motion.begin_increment(bodies, from, to);
     pieces.clear();
+    touching_updates  = 0;
+    augmentations     = 0;
+    multiplier_change = 0;
     const QGauss<1> gauss(n_gauss_points);
     const auto     &all_curves = curves.get_curves();
     point_tractions.resize(all_curves.size());
@@ -168,6 +204,49 @@ namespace bsmpm
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (bodies[b].has_free_motion())
         touch_if_free(b, grid);
+    if (augmented)
+      initialize_multipliers();
+  }
+
+
+
+  void
+  CurveContact::initialize_multipliers()
+  {
+    // The multipliers carry the traction of the last increment into this
+    // one, as the friction history does: the first Newton solve then
+    // penetrates only by what the increment adds, and fewer updates
+    // follow. They are kept at the curves' points (which every process
+    // holds alike, and which follow the points added and removed), so a
+    // piece takes the mean over the Gauss points of its first guess of the
+    // touching part (of all its Gauss points if none touches).
+    for (ContactPiece &piece : pieces)
+      {
+        const RigidBody &body   = bodies[piece.body];
+        double           normal = 0, tangential = 0, length = 0;
+        bool             any = false;
+        for (const bool t : piece.touching)
+          any = any || t;
+        for (unsigned int q = 0; q < piece.positions.size(); ++q)
+          if (piece.touching[q] || !any)
+            {
+              const Tensor<1, 2> n = body
+                                       .to_feature(piece.positions[q],
+                                                   body_motion.end(piece.body),
+                                                   piece.features[q])
+                                       .normal;
+              normal += piece.weights[q] * (piece.previous[q] * n);
+              tangential += piece.weights[q] *
+                            (piece.previous[q] * Tensor<1, 2>({-n[1], n[0]}));
+              length += piece.weights[q];
+            }
+        piece.multiplier_pressure =
+          length > 0 ? std::max(normal / length, 0.) : 0.;
+        piece.multiplier_tangential =
+          length > 0 && body.friction() != RigidBody::Friction::smooth ?
+            tangential / length :
+            0.;
+      }
   }
 
 
@@ -296,10 +375,13 @@ namespace bsmpm
     if (length == 0)
       return state;
     state.gap /= length;
+    // The augmented Lagrangian's pressure max(0, lambda - eps g) acts
+    // while the gap is below lambda / eps (zero for the plain penalty).
+    const double lambda = augmented ? piece.multiplier_pressure : 0.;
     // Touching within round-off counts, with zero pressure: a body that
     // rests on a rigid one (and on nothing else) is held from the first
     // iteration on, which starts from the touching place.
-    if (!(state.gap <= 1e-12 * grid.min_cell_size()))
+    if (!(state.gap <= lambda / penalty + 1e-12 * grid.min_cell_size()))
       return state;
     state.active = true;
     state.normal /= state.normal.norm();
@@ -314,7 +396,7 @@ namespace bsmpm
     // twice Hertz's); which Gauss points touch is fixed within the Newton
     // iterations (update_touching_parts()), so that the force stays a
     // smooth function of the increment. G_i = -d(L g)/du_i = int n . N_i.
-    state.pressure = std::max(-penalty * state.gap, 0.);
+    state.pressure = std::max(lambda - penalty * state.gap, 0.);
     Vector<double> G(n), T(n);
     for (unsigned int q = 0; q < n_q; ++q)
       {
@@ -360,7 +442,10 @@ namespace bsmpm
           slip += piece.weights[q] * ((u[q] - rigid) * tq) / length;
           previous += piece.weights[q] * (piece.previous[q] * tq) / length;
         }
-    const double trial = previous - penalty * slip;
+    // The augmented Lagrangian starts from the piece's multiplier, which
+    // its first value takes from the same traction of the last increment.
+    const double trial =
+      (augmented ? piece.multiplier_tangential : previous) - penalty * slip;
     const double limit = body.friction() == RigidBody::Friction::rough ?
                            std::numeric_limits<double>::infinity() :
                            body.friction_coefficient() * state.pressure;
@@ -505,7 +590,9 @@ namespace bsmpm
     const double step = 1e-6 * grid.min_cell_size();
     // A piece that touches by less than the differences move it has the
     // kink where it opens between them: no derivative to compare.
-    if (-state.gap < 10 * step)
+    // (p / eps is the distance to the kink: -g for the penalty, lambda / eps
+    // - g for the augmented Lagrangian.)
+    if (state.pressure / penalty < 10 * step)
       return 0.;
     double largest = 0, difference = 0;
     for (unsigned int j = 0; j < n + 2; ++j)
@@ -535,6 +622,69 @@ namespace bsmpm
           }
       }
     return largest > 0 ? difference / largest : 0.;
+  }
+
+
+
+  bool
+  CurveContact::after_convergence(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    bool go_on = false;
+    if (touching_updates < max_touching_updates &&
+        update_touching_parts(grid, kernel, increment, prescribed))
+      {
+        ++touching_updates;
+        go_on = true;
+      }
+    // The multipliers are updated at the parts that now touch; a change of
+    // the parts alone also asks for one more solve, after which the
+    // multipliers are checked again.
+    if (augmented && augmentations < max_augmentations &&
+        augment(grid, kernel, increment, prescribed))
+      {
+        ++augmentations;
+        go_on = true;
+      }
+    return go_on;
+  }
+
+
+
+  bool
+  CurveContact::augment(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    // Uzawa's update lambda <- max(0, lambda - eps g) is the pressure of
+    // the converged increment, and lambda_T <- the tangential traction
+    // (the trial lambda_T - eps s while sticking, mu p when sliding). At
+    // its fixed point the mean gap of a touching piece and its slip while
+    // sticking are zero.
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    std::vector<double> sums(2, 0.); // change^2 L, size^2 L
+    for (ContactPiece &piece : pieces)
+      {
+        const PieceState state =
+          evaluate(piece, grid, kernel, increment, prescribed, dof_indices);
+        const double pressure   = state.active ? state.pressure : 0.;
+        const double tangential = state.active ? state.tangential : 0.;
+        const double L = state.active ? state.contact_length : piece.length;
+        sums[0] += L * (std::pow(pressure - piece.multiplier_pressure, 2) +
+                        std::pow(tangential - piece.multiplier_tangential, 2));
+        sums[1] += L * (pressure * pressure + tangential * tangential);
+        piece.multiplier_pressure   = pressure;
+        piece.multiplier_tangential = tangential;
+      }
+    Utilities::MPI::sum(sums, grid.mpi_communicator(), sums);
+    multiplier_change = sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.;
+    return multiplier_change > augmentation_tolerance;
   }
 
 
@@ -711,6 +861,13 @@ namespace bsmpm
         quantities[name + "_contact_length"] = resultants[b].contact_length;
         quantities[name + "_sliding_length"] = resultants[b].sliding_length;
         quantities[name + "_penetration"]    = resultants[b].penetration;
+      }
+    if (augmented)
+      {
+        // Of the last increment: the Uzawa updates it took and how much
+        // the last changed the multipliers (relative).
+        quantities["contact_augmentations"]     = augmentations;
+        quantities["contact_multiplier_change"] = multiplier_change;
       }
     body_motion.record(bodies, to, quantities);
     if (check_tangent)

@@ -29,22 +29,27 @@ namespace bsmpm
    * candidate: where it touches a rigid body it takes the contact
    * condition, where it leaves it it is free again, with no input.
    *
-   * The condition is imposed by a penalty on the curve pieces in the cut
-   * cells, integrated with Gauss points on the spline of the step's start
-   * (the curve that the points define), moved by the displacement
-   * increment: at a Gauss point X, x = X + du(X), the gap g(x) to the rigid
-   * body (at the load factor the increment ends at) and its normal n give
-   * the pressure p_N = eps max(0, -g); with friction the tangential
-   * traction is a return map of Coulomb's law,
+   * The condition is imposed on the curve pieces in the cut cells (the
+   * pieces of a curve in one cell that face one part of a rigid outline),
+   * integrated with Gauss points on the spline of the step's start (the
+   * curve that the points define), moved by the displacement increment: at
+   * a Gauss point X, x = X + du(X), the gap g(x) to the rigid body (at the
+   * load factor the increment ends at) and its normal n. Each piece has one
+   * pressure for the mean gap g_m of its touching part, by default an
+   * augmented Lagrangian p = max(0, lambda - eps g_m) with the multiplier
+   * lambda updated after each converged Newton solve (Uzawa) until the
+   * mean gap is zero to a tolerance ('Contact/Method'; lambda = 0: the plain
+   * penalty). With friction the tangential traction is a return map of
+   * Coulomb's law on the mean slip s of the increment relative to the body,
    *
-   *   t_trial = t_previous . t - eps (du - du_rigid) . t,
-   *   t_T     = t_trial                      if |t_trial| <= mu p_N (stick),
-   *           = mu p_N sign(t_trial)         otherwise (slip),
+   *   t_trial = lambda_T - eps s,
+   *   t_T     = t_trial                      if |t_trial| <= mu p (stick),
+   *           = mu p sign(t_trial)           otherwise (slip),
    *
-   * and the body feels the force p_N n + t_T t per unit length. The active
-   * set (which Gauss points touch, which slide) is decided anew in every
-   * Newton iteration, and the tangent is its exact derivative (a
-   * semi-smooth Newton method), unsymmetric while anything slides. The
+   * lambda_T the tangential multiplier (for the penalty: the traction of
+   * the last increment). Which Gauss points touch is fixed within the
+   * Newton iterations and updated between them, with the multipliers; the
+   * tangent is the exact derivative, unsymmetric while anything slides. The
    * penalty eps = gamma max(E, kappa) / h is Nitsche's scale.
    *
    * The tangential traction of the last increment, the history of
@@ -121,6 +126,22 @@ namespace bsmpm
       TrilinosWrappers::MPI::Vector                    &force);
 
     /**
+     * After Newton iterations converged at @p increment: updates the
+     * pieces' touching parts (update_touching_parts(), at most
+     * max_touching_updates times per increment) and, with the augmented
+     * Lagrangian, the multipliers (augment(), at most 'Contact/Maximum
+     * augmentations' times). Returns whether the iterations must go on
+     * from @p increment: a part changed, or the multipliers changed by more
+     * than 'Contact/Augmentation tolerance'. Collective.
+     */
+    bool
+    after_convergence(
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /**
      * After Newton iterations converged at @p increment: marks the Gauss
      * points that touch their rigid body there as the pieces' touching
      * parts. Returns whether any changed (on any process): then the
@@ -168,6 +189,26 @@ namespace bsmpm
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 
   private:
+    /**
+     * One Uzawa update of the augmented Lagrangian at the converged
+     * @p increment: each piece's multipliers take the pressure
+     * max(0, lambda_N - eps g) and the tangential traction that the piece
+     * has there (zero where it does not touch). Returns whether they
+     * changed by more than 'Contact/Augmentation tolerance' of their size
+     * (L2 along the curves, over all processes). Collective.
+     */
+    bool
+    augment(const BackgroundGrid                             &grid,
+            const Q1CellKernel                               &kernel,
+            const LinearAlgebra::distributed::Vector<double> &increment,
+            const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /** With the augmented Lagrangian: each piece's multipliers at the start
+     * of the increment, the traction of the last increment (kept at the
+     * curves' points) on its first guess of the touching part. */
+    void
+    initialize_multipliers();
+
     /** For body @p b with a force-controlled component that none of the
      * candidate Gauss points touch at the start of the iterations: moves
      * it along its force until it touches the nearest (a body that touches
@@ -202,6 +243,11 @@ namespace bsmpm
        * curve's points. */
       std::vector<Tensor<1, 2>> previous;
       double                    length = 0;
+      /** The augmented Lagrangian's multipliers of the piece: its
+       * pressure lambda_N (p = max(0, lambda_N - eps g)) and tangential
+       * traction lambda_T (the trial of Coulomb's law lambda_T - eps s). */
+      double multiplier_pressure   = 0;
+      double multiplier_tangential = 0;
     };
 
     /** What contact does on a piece for a displacement increment. */
@@ -267,6 +313,19 @@ namespace bsmpm
     /** On this process, of all checks of the run (check_tangent). */
     double       largest_tangent_error = 0;
     unsigned int n_gauss_points        = 4;
+    /** 'Contact/Method': the augmented Lagrangian (true) or the plain
+     * penalty. */
+    bool         augmented              = true;
+    double       augmentation_tolerance = 1e-3;
+    unsigned int max_augmentations      = 30;
+    /** Updates of the touching parts that one increment may ask for; then
+     * the last parts stand. */
+    static constexpr unsigned int max_touching_updates = 8;
+    /** In the present increment. */
+    unsigned int touching_updates = 0;
+    unsigned int augmentations    = 0;
+    /** The relative change of the multipliers in the last augment(). */
+    double multiplier_change = 0;
 
     double                    penalty = 0;
     double                    from = 0, to = 0;
