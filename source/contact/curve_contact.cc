@@ -7,9 +7,11 @@
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/points/material_points.h>
 
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace bsmpm
@@ -43,22 +45,20 @@ namespace bsmpm
       Patterns::Selection("augmented Lagrangian|penalty"),
       "How contact is imposed on the curves' pieces (doc/contact.md). "
       "'penalty': the pressure eps times the mean penetration of a piece "
-      "(eps = Penalty max(E, kappa) / h) and, while sticking, the "
-      "tangential traction eps times the slip: the body penetrates by about "
-      "p h / (Penalty E) and slips elastically. 'augmented Lagrangian': the "
-      "same penalty with a multiplier per piece, p = max(0, lambda - eps "
-      "g), updated (Uzawa) after each converged Newton solve of the load "
-      "step until it changes by less than the Augmentation tolerance: the "
-      "mean gap of a touching piece and its slip while sticking go to "
-      "zero.");
+      "(eps = Penalty max(E, kappa) / h): the body penetrates by about "
+      "p h / (Penalty E). 'augmented Lagrangian': the same penalty with a "
+      "multiplier per piece, p = max(0, lambda - eps g), updated (Uzawa) "
+      "after each converged Newton solve of the load step until the force "
+      "on every rigid body changes by less than the Augmentation "
+      "tolerance: the penetration goes to zero. Both hold sticking "
+      "friction by the penalty (eps per unit slip).");
     prm.declare_entry(
       "Augmentation tolerance",
-      "1e-3",
+      "1e-4",
       Patterns::Double(0., 1.),
       "The augmented Lagrangian stops updating the multipliers of a load "
-      "step when they change by less than this fraction of their size (L2 "
-      "along the curves): the penetration left is below this fraction of "
-      "the plain penalty's.");
+      "step when the force on every rigid body has changed by less than "
+      "this fraction of it in the last update.");
     prm.declare_entry(
       "Maximum augmentations",
       "30",
@@ -114,6 +114,11 @@ namespace bsmpm
     touching_updates  = 0;
     augmentations     = 0;
     multiplier_change = 0;
+    force_change      = 0;
+    // No force yet: the first update always asks for one more solve.
+    last_forces.assign(bodies.size(),
+                       Tensor<1, 2>(
+                         {std::numeric_limits<double>::infinity(), 0.}));
     const QGauss<1> gauss(n_gauss_points);
     const auto     &all_curves = curves.get_curves();
     point_tractions.resize(all_curves.size());
@@ -223,7 +228,7 @@ namespace bsmpm
     for (ContactPiece &piece : pieces)
       {
         const RigidBody &body   = bodies[piece.body];
-        double           normal = 0, tangential = 0, length = 0;
+        double           normal = 0, length = 0;
         bool             any = false;
         for (const bool t : piece.touching)
           any = any || t;
@@ -236,16 +241,10 @@ namespace bsmpm
                                                    piece.features[q])
                                        .normal;
               normal += piece.weights[q] * (piece.previous[q] * n);
-              tangential += piece.weights[q] *
-                            (piece.previous[q] * Tensor<1, 2>({-n[1], n[0]}));
               length += piece.weights[q];
             }
         piece.multiplier_pressure =
           length > 0 ? std::max(normal / length, 0.) : 0.;
-        piece.multiplier_tangential =
-          length > 0 && body.friction() != RigidBody::Friction::smooth ?
-            tangential / length :
-            0.;
       }
   }
 
@@ -442,10 +441,11 @@ namespace bsmpm
           slip += piece.weights[q] * ((u[q] - rigid) * tq) / length;
           previous += piece.weights[q] * (piece.previous[q] * tq) / length;
         }
-    // The augmented Lagrangian starts from the piece's multiplier, which
-    // its first value takes from the same traction of the last increment.
-    const double trial =
-      (augmented ? piece.multiplier_tangential : previous) - penalty * slip;
+    // Sticking stays regularized by the penalty (eps per unit slip, from
+    // the traction of the last increment) also with the augmented
+    // Lagrangian: augmenting the tangential traction per piece drifted
+    // without end along the alternating mode (doc/contact.md).
+    const double trial = previous - penalty * slip;
     const double limit = body.friction() == RigidBody::Friction::rough ?
                            std::numeric_limits<double>::infinity() :
                            body.friction_coefficient() * state.pressure;
@@ -638,7 +638,7 @@ namespace bsmpm
         update_touching_parts(grid, kernel, increment, prescribed))
       {
         ++touching_updates;
-        go_on = true;
+        return true;
       }
     // The multipliers are updated at the parts that now touch; a change of
     // the parts alone also asks for one more solve, after which the
@@ -661,30 +661,114 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
-    // Uzawa's update lambda <- max(0, lambda - eps g) is the pressure of
-    // the converged increment, and lambda_T <- the tangential traction
-    // (the trial lambda_T - eps s while sticking, mu p when sliding). At
-    // its fixed point the mean gap of a touching piece and its slip while
-    // sticking are zero.
+    // Uzawa's update of a piece would be lambda <- max(0, lambda - eps g),
+    // the pressure of the converged increment. One multiplier per piece
+    // (constant per cell) against the bilinear displacement has a null
+    // mode: pressures that alternate from piece to piece give next to no
+    // nodal force, and the plain update drifted along it (doc/contact.md).
+    // So a touching piece takes the mean of its own update and its
+    // touching neighbours' along the curve, weighted 1 2 1 by length,
+    // which is blind to that mode: at the fixed point the mean gaps vanish
+    // but for an alternating part, which the penalty holds.
     std::vector<types::global_dof_index> dof_indices(
       Q1CellKernel::dofs_per_cell);
-    std::vector<double> sums(2, 0.); // change^2 L, size^2 L
-    for (ContactPiece &piece : pieces)
+    // Per piece: body, curve, u_begin, u_end, length, whether it touches,
+    // the raw update of lambda.
+    constexpr unsigned int width = 7;
+    std::vector<double>    local;
+    std::vector<double>    forces(2 * bodies.size(), 0.);
+    for (const ContactPiece &piece : pieces)
       {
         const PieceState state =
           evaluate(piece, grid, kernel, increment, prescribed, dof_indices);
-        const double pressure   = state.active ? state.pressure : 0.;
-        const double tangential = state.active ? state.tangential : 0.;
-        const double L = state.active ? state.contact_length : piece.length;
-        sums[0] += L * (std::pow(pressure - piece.multiplier_pressure, 2) +
-                        std::pow(tangential - piece.multiplier_tangential, 2));
-        sums[1] += L * (pressure * pressure + tangential * tangential);
-        piece.multiplier_pressure   = pressure;
-        piece.multiplier_tangential = tangential;
+        if (state.active)
+          for (unsigned int d = 0; d < 2; ++d)
+            forces[2 * piece.body + d] += state.resultant[d];
+        local.insert(local.end(),
+                     {double(piece.body),
+                      double(piece.curve),
+                      piece.u_begin,
+                      piece.u_end,
+                      state.active ? state.contact_length : piece.length,
+                      state.active ? 1. : 0.,
+                      (state.active ? state.pressure : 0.) -
+                        piece.multiplier_pressure});
       }
-    Utilities::MPI::sum(sums, grid.mpi_communicator(), sums);
-    multiplier_change = sums[1] > 0 ? std::sqrt(sums[0] / sums[1]) : 0.;
-    return multiplier_change > augmentation_tolerance;
+    // Every process gathers all pieces (a few per cell along the contact),
+    // so that a piece's neighbour on another process counts and every
+    // process forms the same sums.
+    const MPI_Comm      communicator = grid.mpi_communicator();
+    const auto          parts = Utilities::MPI::all_gather(communicator, local);
+    std::vector<double> all;
+    unsigned int        offset = 0;
+    for (unsigned int p = 0; p < parts.size(); ++p)
+      {
+        if (p == Utilities::MPI::this_mpi_process(communicator))
+          offset = all.size() / width;
+        all.insert(all.end(), parts[p].begin(), parts[p].end());
+      }
+    const unsigned int n_all = all.size() / width;
+    // The neighbours along the curve: the pieces of the same body and
+    // curve that end where a piece begins and begin where it ends.
+    std::map<std::array<double, 3>, unsigned int> by_begin, by_end;
+    for (unsigned int k = 0; k < n_all; ++k)
+      {
+        const double *r              = &all[width * k];
+        by_begin[{r[0], r[1], r[2]}] = k;
+        by_end[{r[0], r[1], r[3]}]   = k;
+      }
+    std::vector<double> updates(n_all);
+    double              change = 0;
+    for (unsigned int k = 0; k < n_all; ++k)
+      {
+        const double *r      = &all[width * k];
+        double        update = r[6];
+        if (r[5] == 1.)
+          {
+            double weight = 2 * r[4];
+            update *= 2 * r[4];
+            const auto before = by_end.find({r[0], r[1], r[2]});
+            const auto after  = by_begin.find({r[0], r[1], r[3]});
+            for (const int n :
+                 {before == by_end.end() ? -1 : int(before->second),
+                  after == by_begin.end() ? -1 : int(after->second)})
+              if (n >= 0 && all[width * n + 5] == 1.)
+                {
+                  weight += all[width * n + 4];
+                  update += all[width * n + 4] * all[width * n + 6];
+                }
+            update /= weight;
+          }
+        updates[k] = update;
+        change += r[4] * update * update;
+      }
+    double size = 0;
+    for (unsigned int k = 0; k < pieces.size(); ++k)
+      {
+        ContactPiece &piece = pieces[k];
+        piece.multiplier_pressure =
+          std::max(piece.multiplier_pressure + updates[offset + k], 0.);
+        size += all[width * (offset + k) + 4] *
+                std::pow(piece.multiplier_pressure, 2);
+      }
+    size              = Utilities::MPI::sum(size, communicator);
+    multiplier_change = size > 0 ? std::sqrt(change / size) : 0.;
+    // The force on each body at this solve against the last decides when
+    // to stop: it is what the updates are for, and the multipliers
+    // converge more slowly in the modes that hardly change it.
+    Utilities::MPI::sum(forces, communicator, forces);
+    force_change = 0;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const Tensor<1, 2> force({forces[2 * b], forces[2 * b + 1]});
+        const double       difference = (force - last_forces[b]).norm();
+        if (difference > 0)
+          force_change =
+            std::max(force_change,
+                     force.norm() > 0 ? difference / force.norm() : 1.);
+        last_forces[b] = force;
+      }
+    return force_change > augmentation_tolerance;
   }
 
 
@@ -868,6 +952,7 @@ namespace bsmpm
         // the last changed the multipliers (relative).
         quantities["contact_augmentations"]     = augmentations;
         quantities["contact_multiplier_change"] = multiplier_change;
+        quantities["contact_force_change"]      = force_change;
       }
     body_motion.record(bodies, to, quantities);
     if (check_tangent)

@@ -243,11 +243,9 @@ namespace bsmpm
        * curve's points. */
       std::vector<Tensor<1, 2>> previous;
       double                    length = 0;
-      /** The augmented Lagrangian's multipliers of the piece: its
-       * pressure lambda_N (p = max(0, lambda_N - eps g)) and tangential
-       * traction lambda_T (the trial of Coulomb's law lambda_T - eps s). */
-      double multiplier_pressure   = 0;
-      double multiplier_tangential = 0;
+      /** The augmented Lagrangian's multiplier of the piece:
+       * p = max(0, lambda - eps g). */
+      double multiplier_pressure = 0;
     };
 
     /** What contact does on a piece for a displacement increment. */
@@ -316,7 +314,7 @@ namespace bsmpm
     /** 'Contact/Method': the augmented Lagrangian (true) or the plain
      * penalty. */
     bool         augmented              = true;
-    double       augmentation_tolerance = 1e-3;
+    double       augmentation_tolerance = 1e-4;
     unsigned int max_augmentations      = 30;
     /** Updates of the touching parts that one increment may ask for; then
      * the last parts stand. */
@@ -326,6 +324,10 @@ namespace bsmpm
     unsigned int augmentations    = 0;
     /** The relative change of the multipliers in the last augment(). */
     double multiplier_change = 0;
+    /** The largest relative change of a body's contact force in the last
+     * augment(), and the forces it measured. */
+    double                    force_change = 0;
+    std::vector<Tensor<1, 2>> last_forces;
 
     double                    penalty = 0;
     double                    from = 0, to = 0;
