@@ -742,17 +742,6 @@ namespace bsmpm
         updates[k] = update;
         change += r[4] * update * update;
       }
-    double size = 0;
-    for (unsigned int k = 0; k < pieces.size(); ++k)
-      {
-        ContactPiece &piece = pieces[k];
-        piece.multiplier_pressure =
-          std::max(piece.multiplier_pressure + updates[offset + k], 0.);
-        size += all[width * (offset + k) + 4] *
-                std::pow(piece.multiplier_pressure, 2);
-      }
-    size              = Utilities::MPI::sum(size, communicator);
-    multiplier_change = size > 0 ? std::sqrt(change / size) : 0.;
     // The force on each body at this solve against the last decides when
     // to stop: it is what the updates are for, and the multipliers
     // converge more slowly in the modes that hardly change it.
@@ -768,7 +757,24 @@ namespace bsmpm
                      force.norm() > 0 ? difference / force.norm() : 1.);
         last_forces[b] = force;
       }
-    return force_change > augmentation_tolerance;
+    double size = 0;
+    for (unsigned int k = 0; k < pieces.size(); ++k)
+      size +=
+        all[width * (offset + k) + 4] *
+        std::pow(std::max(pieces[k].multiplier_pressure + updates[offset + k],
+                          0.),
+                 2);
+    size              = Utilities::MPI::sum(size, communicator);
+    multiplier_change = size > 0 ? std::sqrt(change / size) : 0.;
+    // Converged: the increment stands with the multipliers it was solved
+    // with, so that the forces reported balance the body (an update now
+    // would leave them unbalanced by the last change).
+    if (force_change <= augmentation_tolerance)
+      return false;
+    for (unsigned int k = 0; k < pieces.size(); ++k)
+      pieces[k].multiplier_pressure =
+        std::max(pieces[k].multiplier_pressure + updates[offset + k], 0.);
+    return true;
   }
 
 
