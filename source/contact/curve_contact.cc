@@ -633,23 +633,22 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
-    bool go_on = false;
+    // The touching parts first: the multipliers are updated only at a
+    // solve whose parts stand (changing both at once, the parts and the
+    // pressures fed each other).
     if (touching_updates < max_touching_updates &&
         update_touching_parts(grid, kernel, increment, prescribed))
       {
         ++touching_updates;
         return true;
       }
-    // The multipliers are updated at the parts that now touch; a change of
-    // the parts alone also asks for one more solve, after which the
-    // multipliers are checked again.
     if (augmented && augmentations < max_augmentations &&
         augment(grid, kernel, increment, prescribed))
       {
         ++augmentations;
-        go_on = true;
+        return true;
       }
-    return go_on;
+    return false;
   }
 
 

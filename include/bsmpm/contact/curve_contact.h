@@ -38,19 +38,19 @@ namespace bsmpm
    * pressure for the mean gap g_m of its touching part, by default an
    * augmented Lagrangian p = max(0, lambda - eps g_m) with the multiplier
    * lambda updated after each converged Newton solve (Uzawa) until the
-   * mean gap is zero to a tolerance ('Contact/Method'; lambda = 0: the plain
-   * penalty). With friction the tangential traction is a return map of
-   * Coulomb's law on the mean slip s of the increment relative to the body,
+   * force on the rigid bodies stands ('Contact/Method'; lambda = 0: the
+   * plain penalty). With friction the tangential traction is a return map
+   * of Coulomb's law on the mean slip s of the increment relative to the
+   * body, regularized by the penalty in both methods,
    *
-   *   t_trial = lambda_T - eps s,
+   *   t_trial = t_previous - eps s,
    *   t_T     = t_trial                      if |t_trial| <= mu p (stick),
-   *           = mu p sign(t_trial)           otherwise (slip),
+   *           = mu p sign(t_trial)           otherwise (slip).
    *
-   * lambda_T the tangential multiplier (for the penalty: the traction of
-   * the last increment). Which Gauss points touch is fixed within the
-   * Newton iterations and updated between them, with the multipliers; the
-   * tangent is the exact derivative, unsymmetric while anything slides. The
-   * penalty eps = gamma max(E, kappa) / h is Nitsche's scale.
+   * Which Gauss points touch is fixed within the Newton iterations and
+   * updated between them, before the multipliers; the tangent is the
+   * exact derivative, unsymmetric while anything slides. The penalty
+   * eps = gamma max(E, kappa) / h is Nitsche's scale.
    *
    * The tangential traction of the last increment, the history of
    * friction, is kept at the curves' points and interpolated along the
@@ -128,11 +128,11 @@ namespace bsmpm
     /**
      * After Newton iterations converged at @p increment: updates the
      * pieces' touching parts (update_touching_parts(), at most
-     * max_touching_updates times per increment) and, with the augmented
-     * Lagrangian, the multipliers (augment(), at most 'Contact/Maximum
-     * augmentations' times). Returns whether the iterations must go on
-     * from @p increment: a part changed, or the multipliers changed by more
-     * than 'Contact/Augmentation tolerance'. Collective.
+     * max_touching_updates times per increment) and, once they stand, with
+     * the augmented Lagrangian the multipliers (augment(), at most
+     * 'Contact/Maximum augmentations' times). Returns whether the
+     * iterations must go on from @p increment: a part or the multipliers
+     * changed. Collective.
      */
     bool
     after_convergence(
@@ -191,11 +191,13 @@ namespace bsmpm
   private:
     /**
      * One Uzawa update of the augmented Lagrangian at the converged
-     * @p increment: each piece's multipliers take the pressure
-     * max(0, lambda_N - eps g) and the tangential traction that the piece
-     * has there (zero where it does not touch). Returns whether they
-     * changed by more than 'Contact/Augmentation tolerance' of their size
-     * (L2 along the curves, over all processes). Collective.
+     * @p increment: each piece's multiplier takes its pressure
+     * max(0, lambda - eps g) there (zero where it does not touch), the
+     * update of a touching piece filtered 1 2 1 with its touching
+     * neighbours' along the curve (doc/contact.md). Returns whether the
+     * force on some rigid body changed by more than 'Contact/Augmentation
+     * tolerance' since the last call; if not, the multipliers are left as
+     * they were. Collective.
      */
     bool
     augment(const BackgroundGrid                             &grid,
@@ -203,8 +205,8 @@ namespace bsmpm
             const LinearAlgebra::distributed::Vector<double> &increment,
             const LinearAlgebra::distributed::Vector<double> *prescribed);
 
-    /** With the augmented Lagrangian: each piece's multipliers at the start
-     * of the increment, the traction of the last increment (kept at the
+    /** With the augmented Lagrangian: each piece's multiplier at the start
+     * of the increment, the pressure of the last increment (kept at the
      * curves' points) on its first guess of the touching part. */
     void
     initialize_multipliers();
