@@ -33,11 +33,13 @@ namespace bsmpm
       "Penalty",
       "10",
       Patterns::Double(0.),
-      "gamma in the contact penalty gamma max(E, kappa) / h: the pressure "
-      "per unit penetration, and the tangential traction per unit slip "
-      "while sticking. The penetration is about p h / (gamma E). Above "
-      "about 20 the pressure of one cell per piece is over-constrained "
-      "and alternates from cell to cell under a flat rigid base "
+      "gamma in the contact penalty eps = gamma max(E, kappa) / h: the "
+      "pressure per unit penetration, and the tangential traction per unit "
+      "slip while sticking. With Method = penalty the penetration is about "
+      "p h / (gamma E); with the augmented Lagrangian the penetration goes "
+      "to zero and gamma sets how fast the updates converge. Above about "
+      "20 the pressure of one cell per piece is over-constrained and "
+      "alternates from cell to cell under a flat rigid base "
       "(doc/contact.md).");
     prm.declare_entry(
       "Method",
