@@ -324,12 +324,14 @@ namespace bsmpm
     /** In the present increment. */
     unsigned int touching_updates = 0;
     unsigned int augmentations    = 0;
-    /** The relative change of the multipliers in the last augment(). */
-    double multiplier_change = 0;
-    /** The largest relative change of a body's contact force in the last
-     * augment(), and the forces it measured. */
+    /** The largest relative change of a body's contact force (or, under
+     * a force, of its motion in the increment) in the last augment(), and
+     * the forces it measured. */
     double                    force_change = 0;
     std::vector<Tensor<1, 2>> last_forces;
+    /** Where the last augment() found each body (for those with a
+     * force-controlled component). */
+    std::vector<Tensor<1, 2>> last_places;
 
     double                    penalty = 0;
     double                    from = 0, to = 0;
