@@ -7,9 +7,11 @@
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/points/material_points.h>
 
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace bsmpm
@@ -31,11 +33,13 @@ namespace bsmpm
       "Penalty",
       "10",
       Patterns::Double(0.),
-      "gamma in the contact penalty gamma max(E, kappa) / h: the pressure "
-      "per unit penetration, and the tangential traction per unit slip "
-      "while sticking. The penetration is about p h / (gamma E). Above "
-      "about 20 the pressure of one cell per piece is over-constrained "
-      "and alternates from cell to cell under a flat rigid base "
+      "gamma in the contact penalty eps = gamma max(E, kappa) / h: the "
+      "pressure per unit penetration, and the tangential traction per unit "
+      "slip while sticking. With Method = penalty the penetration is about "
+      "p h / (gamma E); with the augmented Lagrangian the penetration goes "
+      "to zero and gamma sets how fast the updates converge. Above about "
+      "20 the pressure of one cell per piece is over-constrained and "
+      "alternates from cell to cell under a flat rigid base "
       "(doc/contact.md).");
     prm.declare_entry(
       "Tilt penalty",
@@ -51,6 +55,35 @@ namespace bsmpm
       "yet vanish where a piece's mean gap passes zero, and deep "
       "penetrations with it fail at other steps (doc/contact.md, 'The "
       "tilt of the gap').");
+    prm.declare_entry(
+      "Method",
+      "augmented Lagrangian",
+      Patterns::Selection("augmented Lagrangian|penalty"),
+      "How contact is imposed on the curves' pieces (doc/contact.md). "
+      "'penalty': the pressure eps times the mean penetration of a piece "
+      "(eps = Penalty max(E, kappa) / h): the body penetrates by about "
+      "p h / (Penalty E). 'augmented Lagrangian': the same penalty with a "
+      "multiplier per piece, p = max(0, lambda - eps g), updated (Uzawa) "
+      "after each converged Newton solve of the load step until the force "
+      "on every rigid body changes by less than the Augmentation "
+      "tolerance: the penetration goes to zero. Both hold sticking "
+      "friction by the penalty (eps per unit slip).");
+    prm.declare_entry(
+      "Augmentation tolerance",
+      "1e-4",
+      Patterns::Double(0., 1.),
+      "The augmented Lagrangian stops updating the multipliers of a load "
+      "step when the force on every rigid body (for a body under a Force: "
+      "its motion in the step) has changed by less than this fraction of "
+      "it in the last update.");
+    prm.declare_entry(
+      "Maximum augmentations",
+      "30",
+      Patterns::Integer(0, 1000),
+      "Multiplier updates (each one more Newton solve) per load step at "
+      "most; then the step goes on with the last multipliers, and "
+      "summary.json's contact_augmentations shows when the limit was "
+      "reached.");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),
@@ -66,10 +99,13 @@ namespace bsmpm
   CurveContact::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact");
-    gamma          = prm.get_double("Penalty");
-    check_tangent  = prm.get_bool("Check tangent");
-    n_gauss_points = prm.get_integer("Gauss points per piece");
-    gamma_tilt     = prm.get_double("Tilt penalty");
+    gamma                  = prm.get_double("Penalty");
+    check_tangent          = prm.get_bool("Check tangent");
+    n_gauss_points         = prm.get_integer("Gauss points per piece");
+    augmented              = prm.get("Method") == "augmented Lagrangian";
+    augmentation_tolerance = prm.get_double("Augmentation tolerance");
+    max_augmentations      = prm.get_integer("Maximum augmentations");
+    gamma_tilt             = prm.get_double("Tilt penalty");
     prm.leave_subsection();
     bodies = RigidBody::create_all(prm);
     AssertThrow(bodies.empty() || gamma > 0,
@@ -94,6 +130,16 @@ namespace bsmpm
     to             = load_to;
     body_motion.begin_increment(bodies, from, to);
     pieces.clear();
+    touching_updates = 0;
+    augmentations    = 0;
+    force_change     = 0;
+    // No force yet: the first update always asks for one more solve.
+    last_places.assign(bodies.size(),
+                       Tensor<1, 2>(
+                         {std::numeric_limits<double>::infinity(), 0.}));
+    last_forces.assign(bodies.size(),
+                       Tensor<1, 2>(
+                         {std::numeric_limits<double>::infinity(), 0.}));
     const QGauss<1> gauss(n_gauss_points);
     const auto     &all_curves = curves.get_curves();
     point_tractions.resize(all_curves.size());
@@ -184,6 +230,43 @@ namespace bsmpm
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (bodies[b].has_free_motion())
         touch_if_free(b, grid);
+    if (augmented)
+      initialize_multipliers();
+  }
+
+
+
+  void
+  CurveContact::initialize_multipliers()
+  {
+    // The multipliers carry the traction of the last increment into this
+    // one, as the friction history does: the first Newton solve then
+    // penetrates only by what the increment adds, and fewer updates
+    // follow. They are kept at the curves' points (which every process
+    // holds alike, and which follow the points added and removed), so a
+    // piece takes the mean over the Gauss points of its first guess of the
+    // touching part (of all its Gauss points if none touches).
+    for (ContactPiece &piece : pieces)
+      {
+        const RigidBody &body   = bodies[piece.body];
+        double           normal = 0, length = 0;
+        bool             any = false;
+        for (const bool t : piece.touching)
+          any = any || t;
+        for (unsigned int q = 0; q < piece.positions.size(); ++q)
+          if (piece.touching[q] || !any)
+            {
+              const Tensor<1, 2> n = body
+                                       .to_feature(piece.positions[q],
+                                                   body_motion.end(piece.body),
+                                                   piece.features[q])
+                                       .normal;
+              normal += piece.weights[q] * (piece.previous[q] * n);
+              length += piece.weights[q];
+            }
+        piece.multiplier_pressure =
+          length > 0 ? std::max(normal / length, 0.) : 0.;
+      }
   }
 
 
@@ -312,10 +395,13 @@ namespace bsmpm
     if (length == 0)
       return state;
     state.gap /= length;
+    // The augmented Lagrangian's pressure max(0, lambda - eps g) acts
+    // while the gap is below lambda / eps (zero for the plain penalty).
+    const double lambda = augmented ? piece.multiplier_pressure : 0.;
     // Touching within round-off counts, with zero pressure: a body that
     // rests on a rigid one (and on nothing else) is held from the first
     // iteration on, which starts from the touching place.
-    if (!(state.gap <= 1e-12 * grid.min_cell_size()))
+    if (!(state.gap <= lambda / penalty + 1e-12 * grid.min_cell_size()))
       return state;
     state.active = true;
     state.normal /= state.normal.norm();
@@ -330,7 +416,7 @@ namespace bsmpm
     // twice Hertz's); which Gauss points touch is fixed within the Newton
     // iterations (update_touching_parts()), so that the force stays a
     // smooth function of the increment. G_i = -d(L g)/du_i = int n . N_i.
-    state.pressure = std::max(-penalty * state.gap, 0.);
+    state.pressure = std::max(lambda - penalty * state.gap, 0.);
     Vector<double> G(n), T(n);
     for (unsigned int q = 0; q < n_q; ++q)
       {
@@ -377,6 +463,10 @@ namespace bsmpm
           slip += piece.weights[q] * ((u[q] - rigid) * tq) / length;
           previous += piece.weights[q] * (piece.previous[q] * tq) / length;
         }
+    // Sticking stays regularized by the penalty (eps per unit slip, from
+    // the traction of the last increment) also with the augmented
+    // Lagrangian: augmenting the tangential traction per piece drifted
+    // without end along the alternating mode (doc/contact.md).
     const double trial = previous - penalty * slip;
     const double limit = body.friction() == RigidBody::Friction::rough ?
                            std::numeric_limits<double>::infinity() :
@@ -595,7 +685,9 @@ namespace bsmpm
     const double step = 1e-6 * grid.min_cell_size();
     // A piece that touches by less than the differences move it has the
     // kink where it opens between them: no derivative to compare.
-    if (-state.gap < 10 * step)
+    // (p / eps is the distance to the kink: -g for the penalty, lambda / eps
+    // - g for the augmented Lagrangian.)
+    if (state.pressure / penalty < 10 * step)
       return 0.;
     double largest = 0, difference = 0;
     for (unsigned int j = 0; j < n + 2; ++j)
@@ -625,6 +717,159 @@ namespace bsmpm
           }
       }
     return largest > 0 ? difference / largest : 0.;
+  }
+
+
+
+  bool
+  CurveContact::after_convergence(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    // The touching parts first: the multipliers are updated only at a
+    // solve whose parts stand (changing both at once, the parts and the
+    // pressures fed each other).
+    if (touching_updates < max_touching_updates &&
+        update_touching_parts(grid, kernel, increment, prescribed))
+      {
+        ++touching_updates;
+        return true;
+      }
+    if (augmented && augmentations < max_augmentations &&
+        augment(grid, kernel, increment, prescribed))
+      {
+        ++augmentations;
+        return true;
+      }
+    return false;
+  }
+
+
+
+  bool
+  CurveContact::augment(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  {
+    // Uzawa's update of a piece would be lambda <- max(0, lambda - eps g),
+    // the pressure of the converged increment. One multiplier per piece
+    // (constant per cell) against the bilinear displacement has a null
+    // mode: pressures that alternate from piece to piece give next to no
+    // nodal force, and the plain update drifted along it (doc/contact.md).
+    // So a touching piece takes the mean of its own update and its
+    // touching neighbours' along the curve, weighted 1 2 1 by length,
+    // which is blind to that mode: at the fixed point the mean gaps vanish
+    // but for an alternating part, which the penalty holds.
+    std::vector<types::global_dof_index> dof_indices(
+      Q1CellKernel::dofs_per_cell);
+    // Per piece: body, curve, u_begin, u_end, length, whether it touches,
+    // the raw update of lambda.
+    constexpr unsigned int width = 7;
+    std::vector<double>    local;
+    std::vector<double>    forces(2 * bodies.size(), 0.);
+    for (const ContactPiece &piece : pieces)
+      {
+        const PieceState state =
+          evaluate(piece, grid, kernel, increment, prescribed, dof_indices);
+        if (state.active)
+          for (unsigned int d = 0; d < 2; ++d)
+            forces[2 * piece.body + d] += state.resultant[d];
+        local.insert(local.end(),
+                     {double(piece.body),
+                      double(piece.curve),
+                      piece.u_begin,
+                      piece.u_end,
+                      state.active ? state.contact_length : piece.length,
+                      state.active ? 1. : 0.,
+                      (state.active ? state.pressure : 0.) -
+                        piece.multiplier_pressure});
+      }
+    // Every process gathers all pieces (a few per cell along the contact),
+    // so that a piece's neighbour on another process counts and every
+    // process forms the same sums.
+    const MPI_Comm      communicator = grid.mpi_communicator();
+    const auto          parts = Utilities::MPI::all_gather(communicator, local);
+    std::vector<double> all;
+    unsigned int        offset = 0;
+    for (unsigned int p = 0; p < parts.size(); ++p)
+      {
+        if (p == Utilities::MPI::this_mpi_process(communicator))
+          offset = all.size() / width;
+        all.insert(all.end(), parts[p].begin(), parts[p].end());
+      }
+    const unsigned int n_all = all.size() / width;
+    // The neighbours along the curve: the pieces of the same body and
+    // curve that end where a piece begins and begin where it ends.
+    std::map<std::array<double, 3>, unsigned int> by_begin, by_end;
+    for (unsigned int k = 0; k < n_all; ++k)
+      {
+        const double *r              = &all[width * k];
+        by_begin[{r[0], r[1], r[2]}] = k;
+        by_end[{r[0], r[1], r[3]}]   = k;
+      }
+    std::vector<double> updates(n_all);
+    for (unsigned int k = 0; k < n_all; ++k)
+      {
+        const double *r      = &all[width * k];
+        double        update = r[6];
+        if (r[5] == 1.)
+          {
+            double weight = 2 * r[4];
+            update *= 2 * r[4];
+            const auto before = by_end.find({r[0], r[1], r[2]});
+            const auto after  = by_begin.find({r[0], r[1], r[3]});
+            for (const int n :
+                 {before == by_end.end() ? -1 : int(before->second),
+                  after == by_begin.end() ? -1 : int(after->second)})
+              if (n >= 0 && all[width * n + 5] == 1.)
+                {
+                  weight += all[width * n + 4];
+                  update += all[width * n + 4] * all[width * n + 6];
+                }
+            update /= weight;
+          }
+        updates[k] = update;
+      }
+    // The force on each body at this solve against the last decides when
+    // to stop: it is what the updates are for, and the multipliers
+    // converge more slowly in the modes that hardly change it.
+    Utilities::MPI::sum(forces, communicator, forces);
+    force_change = 0;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const Tensor<1, 2> force({forces[2 * b], forces[2 * b + 1]});
+        const double       difference = (force - last_forces[b]).norm();
+        if (difference > 0)
+          force_change =
+            std::max(force_change,
+                     force.norm() > 0 ? difference / force.norm() : 1.);
+        last_forces[b] = force;
+        // A force-controlled body balances its Force whatever the
+        // multipliers: its motion in the increment is what they change.
+        if (bodies[b].has_free_motion())
+          {
+            const Tensor<1, 2> place = body_motion.end(b);
+            const double       moved = (place - body_motion.start(b)).norm();
+            const double       shift = (place - last_places[b]).norm();
+            if (shift > 0)
+              force_change =
+                std::max(force_change, moved > 0 ? shift / moved : 1.);
+            last_places[b] = place;
+          }
+      }
+    // Converged: the increment stands with the multipliers it was solved
+    // with, so that the forces reported balance the body (an update now
+    // would leave them unbalanced by the last change).
+    if (force_change <= augmentation_tolerance)
+      return false;
+    for (unsigned int k = 0; k < pieces.size(); ++k)
+      pieces[k].multiplier_pressure =
+        std::max(pieces[k].multiplier_pressure + updates[offset + k], 0.);
+    return true;
   }
 
 
@@ -801,6 +1046,13 @@ namespace bsmpm
         quantities[name + "_contact_length"] = resultants[b].contact_length;
         quantities[name + "_sliding_length"] = resultants[b].sliding_length;
         quantities[name + "_penetration"]    = resultants[b].penetration;
+      }
+    if (augmented)
+      {
+        // Of the last increment: the Uzawa updates it took. (Not the
+        // relative change of the force, a difference of nearly equal
+        // forces whose round-off differs from np = 1 to np = 3.)
+        quantities["contact_augmentations"] = augmentations;
       }
     body_motion.record(bodies, to, quantities);
     if (check_tangent)

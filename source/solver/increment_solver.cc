@@ -280,14 +280,12 @@ namespace bsmpm
                                                      start_norm,
                                                      positive_tangent);
     // Which Gauss points of the curves touch a rigid body is fixed within
-    // the iterations (CurveContact): where the converged increment changes
-    // it, iterate on from there.
-    for (unsigned int round = 0;
-         parts.contact != nullptr && result.converged &&
-         round < max_contact_rounds &&
-         parts.contact->update_touching_parts(
-           grid, assembly.kernel(), increment, prescribed);
-         ++round)
+    // the iterations, and so are the augmented Lagrangian's multipliers
+    // (CurveContact): where the converged increment changes them, iterate
+    // on from there (CurveContact bounds how often).
+    while (parts.contact != nullptr && result.converged &&
+           parts.contact->after_convergence(
+             grid, assembly.kernel(), increment, prescribed))
       {
         NewtonSolver::Result more = parts.newton.solve(reference,
                                                        residual,

@@ -30,23 +30,28 @@ namespace bsmpm
    * candidate: where it touches a rigid body it takes the contact
    * condition, where it leaves it it is free again, with no input.
    *
-   * The condition is imposed by a penalty on the curve pieces in the cut
-   * cells, integrated with Gauss points on the spline of the step's start
-   * (the curve that the points define), moved by the displacement
-   * increment: at a Gauss point X, x = X + du(X), the gap g(x) to the rigid
-   * body (at the load factor the increment ends at) and its normal n give
-   * the pressure p_N = eps max(0, -g); with friction the tangential
-   * traction is a return map of Coulomb's law,
+   * The condition is imposed on the curve pieces in the cut cells (the
+   * pieces of a curve in one cell that face one part of a rigid outline),
+   * integrated with Gauss points on the spline of the step's start (the
+   * curve that the points define), moved by the displacement increment: at
+   * a Gauss point X, x = X + du(X), the gap g(x) to the rigid body (at the
+   * load factor the increment ends at) and its normal n. Each piece has one
+   * pressure for the mean gap g_m of its touching part, by default an
+   * augmented Lagrangian p = max(0, lambda - eps g_m) with the multiplier
+   * lambda updated after each converged Newton solve (Uzawa) until the
+   * force on the rigid bodies stands ('Contact/Method'; lambda = 0: the
+   * plain penalty). With friction the tangential traction is a return map
+   * of Coulomb's law on the mean slip s of the increment relative to the
+   * body, regularized by the penalty in both methods,
    *
-   *   t_trial = t_previous . t - eps (du - du_rigid) . t,
-   *   t_T     = t_trial                      if |t_trial| <= mu p_N (stick),
-   *           = mu p_N sign(t_trial)         otherwise (slip),
+   *   t_trial = t_previous - eps s,
+   *   t_T     = t_trial                      if |t_trial| <= mu p (stick),
+   *           = mu p sign(t_trial)           otherwise (slip).
    *
-   * and the body feels the force p_N n + t_T t per unit length. The active
-   * set (which Gauss points touch, which slide) is decided anew in every
-   * Newton iteration, and the tangent is its exact derivative (a
-   * semi-smooth Newton method), unsymmetric while anything slides. The
-   * penalty eps = gamma max(E, kappa) / h is Nitsche's scale.
+   * Which Gauss points touch is fixed within the Newton iterations and
+   * updated between them, before the multipliers; the tangent is the
+   * exact derivative, unsymmetric while anything slides. The penalty
+   * eps = gamma max(E, kappa) / h is Nitsche's scale.
    *
    * The tangential traction of the last increment, the history of
    * friction, is kept at the curves' points and interpolated along the
@@ -132,6 +137,22 @@ namespace bsmpm
       TrilinosWrappers::MPI::Vector                    &force);
 
     /**
+     * After Newton iterations converged at @p increment: updates the
+     * pieces' touching parts (update_touching_parts(), at most
+     * max_touching_updates times per increment) and, once they stand, with
+     * the augmented Lagrangian the multipliers (augment(), at most
+     * 'Contact/Maximum augmentations' times). Returns whether the
+     * iterations must go on from @p increment: a part or the multipliers
+     * changed. Collective.
+     */
+    bool
+    after_convergence(
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /**
      * After Newton iterations converged at @p increment: marks the Gauss
      * points that touch their rigid body there as the pieces' touching
      * parts. Returns whether any changed (on any process): then the
@@ -179,6 +200,28 @@ namespace bsmpm
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 
   private:
+    /**
+     * One Uzawa update of the augmented Lagrangian at the converged
+     * @p increment: each piece's multiplier takes its pressure
+     * max(0, lambda - eps g) there (zero where it does not touch), the
+     * update of a touching piece filtered 1 2 1 with its touching
+     * neighbours' along the curve (doc/contact.md). Returns whether the
+     * force on some rigid body changed by more than 'Contact/Augmentation
+     * tolerance' since the last call; if not, the multipliers are left as
+     * they were. Collective.
+     */
+    bool
+    augment(const BackgroundGrid                             &grid,
+            const Q1CellKernel                               &kernel,
+            const LinearAlgebra::distributed::Vector<double> &increment,
+            const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /** With the augmented Lagrangian: each piece's multiplier at the start
+     * of the increment, the pressure of the last increment (kept at the
+     * curves' points) on its first guess of the touching part. */
+    void
+    initialize_multipliers();
+
     /** For body @p b with a force-controlled component that none of the
      * candidate Gauss points touch at the start of the iterations: moves
      * it along its force until it touches the nearest (a body that touches
@@ -213,6 +256,9 @@ namespace bsmpm
        * curve's points. */
       std::vector<Tensor<1, 2>> previous;
       double                    length = 0;
+      /** The augmented Lagrangian's multiplier of the piece:
+       * p = max(0, lambda - eps g). */
+      double multiplier_pressure = 0;
     };
 
     /** What contact does on a piece for a displacement increment. */
@@ -292,6 +338,25 @@ namespace bsmpm
     /** On this process, of all checks of the run (check_tangent). */
     double       largest_tangent_error = 0;
     unsigned int n_gauss_points        = 4;
+    /** 'Contact/Method': the augmented Lagrangian (true) or the plain
+     * penalty. */
+    bool         augmented              = true;
+    double       augmentation_tolerance = 1e-4;
+    unsigned int max_augmentations      = 30;
+    /** Updates of the touching parts that one increment may ask for; then
+     * the last parts stand. */
+    static constexpr unsigned int max_touching_updates = 8;
+    /** In the present increment. */
+    unsigned int touching_updates = 0;
+    unsigned int augmentations    = 0;
+    /** The largest relative change of a body's contact force (or, under
+     * a force, of its motion in the increment) in the last augment(), and
+     * the forces it measured. */
+    double                    force_change = 0;
+    std::vector<Tensor<1, 2>> last_forces;
+    /** Where the last augment() found each body (for those with a
+     * force-controlled component). */
+    std::vector<Tensor<1, 2>> last_places;
 
     double                    penalty = 0;
     double                    from = 0, to = 0;

@@ -76,7 +76,8 @@ namespace bsmpm
      * values of a prescribed displacement increment, or null. Adds the
      * figures of the linear solves to @p solves. With contact, the
      * iterations go on after convergence while the parts of the curves
-     * that touch a rigid body change (at most max_contact_rounds times).
+     * that touch a rigid body or the contact's multipliers change
+     * (CurveContact::after_convergence()).
      */
     NewtonSolver::Result
     solve_newton(const double                                      delta,
@@ -106,10 +107,6 @@ namespace bsmpm
            const double                                      delta);
 
   private:
-    /** Newton solves after the first that a change of the touching parts
-     * can ask for; then the last parts stand. */
-    static constexpr unsigned int max_contact_rounds = 8;
-
     Parts        parts;
     TimerOutput &timer;
 
