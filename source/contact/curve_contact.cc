@@ -57,8 +57,8 @@ namespace bsmpm
       "tilt of the gap').");
     prm.declare_entry(
       "Method",
-      "augmented Lagrangian",
-      Patterns::Selection("augmented Lagrangian|penalty"),
+      "automatic",
+      Patterns::Selection("automatic|augmented Lagrangian|penalty"),
       "How contact is imposed on the curves' pieces (doc/contact.md). "
       "'penalty': the pressure eps times the mean penetration of a piece "
       "(eps = Penalty max(E, kappa) / h): the body penetrates by about "
@@ -67,7 +67,12 @@ namespace bsmpm
       "after each converged Newton solve of the load step until the force "
       "on every rigid body changes by less than the Augmentation "
       "tolerance: the penetration goes to zero. Both hold sticking "
-      "friction by the penalty (eps per unit slip).");
+      "friction by the penalty (eps per unit slip). 'automatic': the "
+      "augmented Lagrangian in small strain (the elastic strip footing "
+      "within 0.8 % of the imposed one, against 1.3-4 % with the penalty), "
+      "the penalty in finite strain (there the updates did not converge "
+      "where the curve slides round a footing's corner, and a deep "
+      "penetration that completes with the penalty failed at u/B = 0.39).");
     prm.declare_entry(
       "Augmentation tolerance",
       "1e-4",
@@ -99,14 +104,19 @@ namespace bsmpm
   CurveContact::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact");
-    gamma                  = prm.get_double("Penalty");
-    check_tangent          = prm.get_bool("Check tangent");
-    n_gauss_points         = prm.get_integer("Gauss points per piece");
-    augmented              = prm.get("Method") == "augmented Lagrangian";
-    augmentation_tolerance = prm.get_double("Augmentation tolerance");
-    max_augmentations      = prm.get_integer("Maximum augmentations");
-    gamma_tilt             = prm.get_double("Tilt penalty");
+    gamma                    = prm.get_double("Penalty");
+    check_tangent            = prm.get_bool("Check tangent");
+    n_gauss_points           = prm.get_integer("Gauss points per piece");
+    const std::string method = prm.get("Method");
+    augmentation_tolerance   = prm.get_double("Augmentation tolerance");
+    max_augmentations        = prm.get_integer("Maximum augmentations");
+    gamma_tilt               = prm.get_double("Tilt penalty");
     prm.leave_subsection();
+    prm.enter_subsection("Material");
+    const bool finite_strain = prm.get("Kinematics") == "finite strain";
+    prm.leave_subsection();
+    augmented = method == "augmented Lagrangian" ||
+                (method == "automatic" && !finite_strain);
     bodies = RigidBody::create_all(prm);
     AssertThrow(bodies.empty() || gamma > 0,
                 ExcMessage("Contact/Penalty must be positive."));
