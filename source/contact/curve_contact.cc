@@ -1057,7 +1057,7 @@ namespace bsmpm
         quantities[name + "_sliding_length"] = resultants[b].sliding_length;
         quantities[name + "_penetration"]    = resultants[b].penetration;
       }
-    if (augmented)
+    if (augmented && enabled())
       {
         // Of the last increment: the Uzawa updates it took. (Not the
         // relative change of the force, a difference of nearly equal
