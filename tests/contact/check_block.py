@@ -21,6 +21,8 @@ import subprocess
 import sys
 import tempfile
 
+from bsmpm_command import bsmpm_command
+
 parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("--bsmpm", required=True)
 parser.add_argument("--prm", required=True)
@@ -32,14 +34,8 @@ problems = []
 
 def run(name, settings, expect_success=True):
     with tempfile.TemporaryDirectory() as directory:
-        command = ([] if args.np == 1 else
-                   ["mpirun", "--allow-run-as-root", "--oversubscribe",
-                    "-np", str(args.np)])
-        command += [str(pathlib.Path(args.bsmpm).resolve()),
-                    str(pathlib.Path(args.prm).resolve()),
-                    "--set", f"Output/Directory={directory}"]
-        for s in settings:
-            command += ["--set", s]
+        command = bsmpm_command(args.bsmpm, args.prm, directory, settings,
+                                args.np)
         result = subprocess.run(command, capture_output=True, text=True)
         if not expect_success:
             print(f"{name}: exit code {result.returncode}; "

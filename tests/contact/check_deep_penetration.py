@@ -26,6 +26,8 @@ import subprocess
 import sys
 import tempfile
 
+from bsmpm_command import bsmpm_command
+
 parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("--bsmpm", required=True)
 parser.add_argument("--prm", required=True)
@@ -45,21 +47,14 @@ problems = []
 
 def run(np):
     with tempfile.TemporaryDirectory() as directory:
-        command = ([] if np == 1 else
-                   ["mpirun", "--allow-run-as-root", "--oversubscribe",
-                    "-np", str(np)])
-        command += [str(pathlib.Path(args.bsmpm).resolve()),
-                    str(pathlib.Path(args.prm).resolve()),
-                    "--set", f"Output/Directory={directory}",
-                    "--set", "Output/Interval=0",
-                    "--set", "Material/Kinematics=finite strain",
-                    "--set", "Background grid/Upper right corner=4, 5.5",
-                    "--set", f"Background grid/Cell size={args.cell_size}",
-                    "--set", f"Loading/Load steps={args.steps}",
-                    "--set", "Rigid body 1/Displacement=0; "
-                    f"{-0.01075 * args.steps}*t"]
-        for s in args.set:
-            command += ["--set", s]
+        command = bsmpm_command(
+            args.bsmpm, args.prm, directory,
+            ["Output/Interval=0", "Material/Kinematics=finite strain",
+             "Background grid/Upper right corner=4, 5.5",
+             f"Background grid/Cell size={args.cell_size}",
+             f"Loading/Load steps={args.steps}",
+             f"Rigid body 1/Displacement=0; {-0.01075 * args.steps}*t"]
+            + args.set, np)
         result = subprocess.run(command, capture_output=True, text=True)
         path = pathlib.Path(directory) / "summary.json"
         summary = json.loads(path.read_text()) if path.exists() else None

@@ -19,6 +19,8 @@ import subprocess
 import sys
 import tempfile
 
+from bsmpm_command import bsmpm_command
+
 parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("--bsmpm", required=True)
 parser.add_argument("--prm", required=True)
@@ -31,14 +33,7 @@ problems = []
 
 def force(settings, np=1):
     with tempfile.TemporaryDirectory() as directory:
-        command = ([] if np == 1 else
-                   ["mpirun", "--allow-run-as-root", "--oversubscribe",
-                    "-np", str(np)])
-        command += [str(pathlib.Path(args.bsmpm).resolve()),
-                    str(pathlib.Path(args.prm).resolve()),
-                    "--set", f"Output/Directory={directory}"]
-        for s in settings:
-            command += ["--set", s]
+        command = bsmpm_command(args.bsmpm, args.prm, directory, settings, np)
         run = subprocess.run(command, capture_output=True, text=True)
         if run.returncode != 0:
             sys.exit(f"{settings}: exit code {run.returncode}: "
