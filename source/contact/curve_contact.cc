@@ -817,9 +817,9 @@ namespace bsmpm
     std::map<std::array<double, 3>, unsigned int> by_begin, by_end;
     for (unsigned int k = 0; k < n_all; ++k)
       {
-        const double *r              = &all[width * k];
-        by_begin[{r[0], r[1], r[2]}] = k;
-        by_end[{r[0], r[1], r[3]}]   = k;
+        const double *r                = &all[width * k];
+        by_begin[{{r[0], r[1], r[2]}}] = k;
+        by_end[{{r[0], r[1], r[3]}}]   = k;
       }
     std::vector<double> updates(n_all);
     for (unsigned int k = 0; k < n_all; ++k)
@@ -830,8 +830,8 @@ namespace bsmpm
           {
             double weight = 2 * r[4];
             update *= 2 * r[4];
-            const auto before = by_end.find({r[0], r[1], r[2]});
-            const auto after  = by_begin.find({r[0], r[1], r[3]});
+            const auto before = by_end.find({{r[0], r[1], r[2]}});
+            const auto after  = by_begin.find({{r[0], r[1], r[3]}});
             for (const int n :
                  {before == by_end.end() ? -1 : int(before->second),
                   after == by_begin.end() ? -1 : int(after->second)})

@@ -47,7 +47,7 @@ namespace bsmpm
     using VectorType = TrilinosWrappers::MPI::Vector;
 
     /** Corners and cell counts of a grid of equal cells. */
-    struct UniformGrid
+    struct FinestGrid
     {
       Point<2>                    lower, upper;
       std::array<unsigned int, 2> cells;
@@ -56,15 +56,15 @@ namespace bsmpm
     /** The grid of @p dof_handler: equal coarse cells refined globally.
      * Its corners and the coarse cell size come from the coarse cells,
      * which every process holds. */
-    UniformGrid
-    uniform_grid(const DoFHandler<2> &dof_handler)
+    FinestGrid
+    finest_grid(const DoFHandler<2> &dof_handler)
     {
       const auto &tria = dof_handler.get_triangulation();
       AssertThrow(dof_handler.get_fe().n_components() == 2 &&
                     dof_handler.get_fe().n_dofs_per_cell() == 8,
                   ExcMessage("Geometric multigrid: needs Q1 elements with "
                              "two components."));
-      UniformGrid grid;
+      FinestGrid grid;
       grid.lower = tria.begin(0)->vertex(0);
       grid.upper = grid.lower;
       for (const auto &cell : tria.cell_iterators_on_level(0))
@@ -256,13 +256,13 @@ namespace bsmpm
     impl->communicator = dof_handler.get_communicator();
     auto &levels       = impl->levels;
 
-    const UniformGrid grid  = uniform_grid(dof_handler);
-    const Point<2>   &lower = grid.lower, &upper = grid.upper;
-    auto              fine = std::make_unique<Implementation::Level>();
-    fine->nx               = grid.cells[0];
-    fine->ny               = grid.cells[1];
-    const double h[2]      = {(upper[0] - lower[0]) / fine->nx,
-                              (upper[1] - lower[1]) / fine->ny};
+    const FinestGrid grid  = finest_grid(dof_handler);
+    const Point<2>  &lower = grid.lower, &upper = grid.upper;
+    auto             fine = std::make_unique<Implementation::Level>();
+    fine->nx              = grid.cells[0];
+    fine->ny              = grid.cells[1];
+    const double h[2]     = {(upper[0] - lower[0]) / fine->nx,
+                             (upper[1] - lower[1]) / fine->ny};
 
     // Where each locally owned DoF sits: a process owns only DoFs of its
     // own cells.
@@ -643,7 +643,7 @@ namespace bsmpm
   GeometricMultigrid::n_coarse_levels(const DoFHandler<2>  &dof_handler,
                                       const AdditionalData &data)
   {
-    std::array<unsigned int, 2> cells = uniform_grid(dof_handler).cells;
+    std::array<unsigned int, 2> cells = finest_grid(dof_handler).cells;
     unsigned int                n     = 0;
     for (; coarsens(cells, data.coarse_size); ++n)
       cells = {{cells[0] / 2, cells[1] / 2}};
