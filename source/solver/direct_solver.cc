@@ -107,7 +107,9 @@ namespace bsmpm
     Status
     factorize(const Epetra_CrsMatrix &matrix)
     {
-      if (!gather(matrix, true))
+      // Collective: every process returns alike.
+      if (dealii::Utilities::MPI::min(gather(matrix, true) ? 1 : 0,
+                                      communicator) == 0)
         return Status::other;
       int status = 0;
       if (on_host)
@@ -206,6 +208,7 @@ namespace bsmpm
       Epetra_CrsMatrix all(Copy, all_rows, 0);
       if (all.Import(matrix, import, Insert) != 0 || all.FillComplete() != 0)
         return false;
+      const int        base = all_rows.IndexBase();
       std::vector<int> new_rows, new_columns;
       values.clear();
       for (int row = 0; row < all.NumMyRows(); ++row)
@@ -216,8 +219,9 @@ namespace bsmpm
           all.ExtractMyRowView(row, n, entries, indices);
           for (int k = 0; k < n; ++k)
             {
-              new_rows.push_back(all.GRID(row) + 1);
-              new_columns.push_back(all.GCID(indices[k]) + 1);
+              // MUMPS counts from 1.
+              new_rows.push_back(all.GRID(row) - base + 1);
+              new_columns.push_back(all.GCID(indices[k]) - base + 1);
               values.push_back(entries[k]);
             }
         }
