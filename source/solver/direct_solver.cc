@@ -201,37 +201,55 @@ namespace bsmpm
   private:
     /** The local triplets (1-based) of @p matrix on process 0; with
      * @p structure the rows and columns are taken anew, else only the
-     * values, and false if the structure is not the one kept. */
+     * values into the gathered matrix of the last call with @p structure
+     * (its entries in place: a refactorisation of 29 k unknowns spent a
+     * third of its time building the gathered matrix anew), and false if
+     * @p matrix has an entry outside that structure. */
     bool
     gather(const Epetra_CrsMatrix &matrix, const bool structure)
     {
-      Epetra_CrsMatrix all(Copy, all_rows, 0);
-      if (all.Import(matrix, import, Insert) != 0 || all.FillComplete() != 0)
-        return false;
-      const int        base = all_rows.IndexBase();
-      std::vector<int> new_rows, new_columns;
+      if (structure || !all)
+        {
+          all = std::make_unique<Epetra_CrsMatrix>(Copy, all_rows, 0);
+          if (all->Import(matrix, import, Insert) != 0 ||
+              all->FillComplete() != 0)
+            {
+              all.reset();
+              return false;
+            }
+          const int base = all_rows.IndexBase();
+          rows.clear();
+          columns.clear();
+          for (int row = 0; row < all->NumMyRows(); ++row)
+            {
+              int  n       = 0;
+              int *indices = nullptr;
+              all->Graph().ExtractMyRowView(row, n, indices);
+              for (int k = 0; k < n; ++k)
+                {
+                  // MUMPS counts from 1.
+                  rows.push_back(all->GRID(row) - base + 1);
+                  columns.push_back(all->GCID(indices[k]) - base + 1);
+                }
+            }
+        }
+      else
+        {
+          // The same structure: its entries summed from zero take the
+          // values bit for bit; an entry outside it is an error of Add.
+          all->PutScalar(0.);
+          if (all->Import(matrix, import, Add) != 0)
+            return false;
+        }
       values.clear();
-      for (int row = 0; row < all.NumMyRows(); ++row)
+      for (int row = 0; row < all->NumMyRows(); ++row)
         {
           int     n       = 0;
           double *entries = nullptr;
-          int    *indices = nullptr;
-          all.ExtractMyRowView(row, n, entries, indices);
-          for (int k = 0; k < n; ++k)
-            {
-              // MUMPS counts from 1.
-              new_rows.push_back(all.GRID(row) - base + 1);
-              new_columns.push_back(all.GCID(indices[k]) - base + 1);
-              values.push_back(entries[k]);
-            }
+          all->ExtractMyRowView(row, n, entries);
+          values.insert(values.end(), entries, entries + n);
         }
-      if (structure)
-        {
-          rows.swap(new_rows);
-          columns.swap(new_columns);
-          return true;
-        }
-      return new_rows == rows && new_columns == columns;
+      return values.size() == rows.size();
     }
 
     /** MUMPS' factorisation (JOB = 2) of the values, with more workspace
@@ -258,10 +276,12 @@ namespace bsmpm
     const bool          on_host;
     const Epetra_Map    all_rows;
     const Epetra_Import import;
-    DMUMPS_STRUC_C      mumps{};
-    bool                initialised = false;
-    std::vector<int>    rows, columns;
-    std::vector<double> values;
+    /** The matrix gathered on process 0 (no rows elsewhere). */
+    std::unique_ptr<Epetra_CrsMatrix> all;
+    DMUMPS_STRUC_C                    mumps{};
+    bool                              initialised = false;
+    std::vector<int>                  rows, columns;
+    std::vector<double>               values;
   };
 
 
