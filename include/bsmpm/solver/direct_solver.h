@@ -35,12 +35,13 @@ namespace bsmpm
    * from one run to the next (its fronts' contributions are added in the
    * order their messages arrive, and it chooses helpers for large fronts
    * by their load): two identical runs of the deep penetration at np = 2
-   * parted at 1e-13 in step 1 and by a few percent late in the run
-   * (doc/contact.md). Debian's Amesos cannot give MUMPS fewer processes
-   * than the matrix has (it lacks MPI_Comm_c2f), so on more than one
-   * process the matrix is gathered on process 0 and factorised there by
-   * MUMPS alone (its C interface on MPI_COMM_SELF): one run gives the
-   * same bits as the next. KLU gathers the matrix on process 0 itself.
+   * parted at 5e-15 .. 3e-13 within the first 4 steps (doc/contact.md),
+   * enough to flip any decision that sits on a threshold. Debian's Amesos
+   * cannot give MUMPS fewer processes than the matrix has (it lacks
+   * MPI_Comm_c2f), so on more than one process the matrix is gathered on
+   * process 0 and factorised there by MUMPS alone (its C interface on
+   * MPI_COMM_SELF): one run gives the same bits as the next. KLU gathers the
+   * matrix on process 0 itself.
    */
   class DirectSolver
   {
