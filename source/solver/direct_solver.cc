@@ -5,12 +5,17 @@
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
 #include <Amesos_Mumps.h>
+#include <Epetra_Import.h>
+#include <Epetra_Map.h>
 #include <Epetra_MpiComm.h>
+#include <Epetra_Vector.h>
 #include <Teuchos_ParameterList.hpp>
+#include <dmumps_c.h>
 
 #include <algorithm>
 #include <iostream>
 #include <sstream>
+#include <vector>
 
 namespace bsmpm
 {
@@ -35,7 +40,249 @@ namespace bsmpm
       std::ostream      &stream;
       std::streambuf    *saved;
     };
+
+
+
+    /** What MUMPS' INFOG(1) < 0 means for the caller (MUMPS users' guide,
+     * "Error diagnostics"); -1 where more workspace may help. */
+    int
+    mumps_error_class(const int infog1)
+    {
+      switch (infog1)
+        {
+          case -8:
+          case -9:
+          case -11:
+          case -14:
+          case -15:
+          case -17:
+          case -20:
+            return -1; // the workspace was too small
+          case -5:
+          case -7:
+          case -13:
+          case -19:
+            return static_cast<int>(DirectSolver::Status::out_of_memory);
+          case -6:
+          case -10:
+            return static_cast<int>(DirectSolver::Status::singular);
+          default:
+            return static_cast<int>(DirectSolver::Status::other);
+        }
+    }
   } // namespace
+
+
+
+  /**
+   * The matrix of all processes gathered on process 0 (an Epetra_Import
+   * onto a map that puts every row there), as triplets, factorised by
+   * MUMPS on MPI_COMM_SELF with the controls Amesos_Mumps sets; the
+   * right-hand side is gathered likewise and the solution scattered back.
+   * Every call is collective; the other processes only send and receive.
+   */
+  class DirectSolver::GatheredMumps
+  {
+  public:
+    explicit GatheredMumps(const Epetra_CrsMatrix &matrix)
+      : communicator(dynamic_cast<const Epetra_MpiComm &>(matrix.Comm()).Comm())
+      , on_host(dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+      , all_rows(matrix.RowMap().NumGlobalElements(),
+                 on_host ? matrix.RowMap().NumGlobalElements() : 0,
+                 matrix.RowMap().IndexBase(),
+                 matrix.Comm())
+      , import(all_rows, matrix.RowMap())
+    {}
+
+    ~GatheredMumps()
+    {
+      if (initialised)
+        {
+          mumps.job = -2;
+          dmumps_c(&mumps);
+        }
+    }
+
+    /** Analysis and factorisation of @p matrix. */
+    Status
+    factorize(const Epetra_CrsMatrix &matrix)
+    {
+      // Collective: every process returns alike.
+      if (dealii::Utilities::MPI::min(gather(matrix, true) ? 1 : 0,
+                                      communicator) == 0)
+        return Status::other;
+      int status = 0;
+      if (on_host)
+        {
+          mumps.comm_fortran = MPI_Comm_c2f(MPI_COMM_SELF);
+          mumps.par          = 1;
+          mumps.sym          = 0;
+          mumps.job          = -1;
+          dmumps_c(&mumps);
+          initialised = mumps.infog[0] >= 0;
+          if (!initialised)
+            status = static_cast<int>(Status::other);
+          else
+            {
+              // Those of Amesos_Mumps::SetICNTLandCNTL() for one process:
+              // silent, automatic permutation, ordering and scaling, no
+              // iterative refinement, the matrix centralised on the host.
+              for (const int k : {1, 2, 3, 4})
+                mumps.icntl[k - 1] = -1;
+              mumps.icntl[5 - 1]  = 0;
+              mumps.icntl[6 - 1]  = 7;
+              mumps.icntl[7 - 1]  = 7;
+              mumps.icntl[8 - 1]  = 7;
+              mumps.icntl[9 - 1]  = 1;
+              mumps.icntl[10 - 1] = 0;
+              mumps.icntl[11 - 1] = 0;
+              mumps.icntl[12 - 1] = 0;
+              mumps.icntl[13 - 1] = 0;
+              mumps.icntl[15 - 1] = 0;
+              mumps.icntl[16 - 1] = 0;
+              mumps.icntl[18 - 1] = 0;
+              mumps.n             = all_rows.NumGlobalElements();
+              mumps.nnz           = values.size();
+              mumps.nz            = values.size();
+              mumps.irn           = rows.data();
+              mumps.jcn           = columns.data();
+              mumps.a             = values.data();
+              mumps.job           = 1;
+              dmumps_c(&mumps);
+              if (mumps.infog[0] < 0)
+                {
+                  // More workspace is no remedy in the analysis.
+                  const int error = mumps_error_class(mumps.infog[0]);
+                  status = error >= 0 ? error : static_cast<int>(Status::other);
+                }
+              if (status == 0)
+                status = numeric_factorization();
+            }
+        }
+      return static_cast<Status>(
+        dealii::Utilities::MPI::broadcast(communicator, status, 0));
+    }
+
+    /** The factorisation of @p matrix, of the structure factorize() saw,
+     * with its analysis. */
+    Status
+    refactorize(const Epetra_CrsMatrix &matrix)
+    {
+      const bool same = gather(matrix, false);
+      int        status =
+        dealii::Utilities::MPI::min(same ? 1 : 0, communicator) == 1 ?
+                 (on_host ? numeric_factorization() : 0) :
+                 static_cast<int>(Status::other);
+      return static_cast<Status>(
+        dealii::Utilities::MPI::broadcast(communicator, status, 0));
+    }
+
+    bool
+    solve(Epetra_MultiVector &x, const Epetra_MultiVector &b)
+    {
+      Epetra_Vector gathered(all_rows);
+      gathered.Import(b, import, Insert);
+      int error = 0;
+      if (on_host && gathered.MyLength() > 0)
+        {
+          mumps.rhs  = gathered.Values();
+          mumps.nrhs = 1;
+          mumps.lrhs = gathered.MyLength();
+          mumps.job  = 3;
+          dmumps_c(&mumps);
+          error = mumps.infog[0] < 0 ? 1 : 0;
+        }
+      error = dealii::Utilities::MPI::broadcast(communicator, error, 0);
+      if (error == 0)
+        x.Export(gathered, import, Insert);
+      return error == 0;
+    }
+
+  private:
+    /** The local triplets (1-based) of @p matrix on process 0; with
+     * @p structure the rows and columns are taken anew, else only the
+     * values into the gathered matrix of the last call with @p structure
+     * (its entries in place: a refactorisation of 29 k unknowns spent a
+     * third of its time building the gathered matrix anew), and false if
+     * @p matrix has an entry outside that structure. */
+    bool
+    gather(const Epetra_CrsMatrix &matrix, const bool structure)
+    {
+      if (structure || !all)
+        {
+          all = std::make_unique<Epetra_CrsMatrix>(Copy, all_rows, 0);
+          if (all->Import(matrix, import, Insert) != 0 ||
+              all->FillComplete() != 0)
+            {
+              all.reset();
+              return false;
+            }
+          const int base = all_rows.IndexBase();
+          rows.clear();
+          columns.clear();
+          for (int row = 0; row < all->NumMyRows(); ++row)
+            {
+              int  n       = 0;
+              int *indices = nullptr;
+              all->Graph().ExtractMyRowView(row, n, indices);
+              for (int k = 0; k < n; ++k)
+                {
+                  // MUMPS counts from 1.
+                  rows.push_back(all->GRID(row) - base + 1);
+                  columns.push_back(all->GCID(indices[k]) - base + 1);
+                }
+            }
+        }
+      else
+        {
+          // The same structure: its entries summed from zero take the
+          // values bit for bit; an entry outside it is an error of Add.
+          all->PutScalar(0.);
+          if (all->Import(matrix, import, Add) != 0)
+            return false;
+        }
+      values.clear();
+      for (int row = 0; row < all->NumMyRows(); ++row)
+        {
+          int     n       = 0;
+          double *entries = nullptr;
+          all->ExtractMyRowView(row, n, entries);
+          values.insert(values.end(), entries, entries + n);
+        }
+      return values.size() == rows.size();
+    }
+
+    /** MUMPS' factorisation (JOB = 2) of the values, with more workspace
+     * where the pivoting needs it; a Status on the host. */
+    int
+    numeric_factorization()
+    {
+      mumps.a = values.data();
+      for (const int workspace : {20, 100, 400, 1600})
+        {
+          mumps.icntl[14 - 1] = workspace;
+          mumps.job           = 2;
+          dmumps_c(&mumps);
+          if (mumps.infog[0] >= 0)
+            return static_cast<int>(Status::success);
+          const int error = mumps_error_class(mumps.infog[0]);
+          if (error >= 0)
+            return error;
+        }
+      return static_cast<int>(Status::out_of_memory);
+    }
+
+    const MPI_Comm      communicator;
+    const bool          on_host;
+    const Epetra_Map    all_rows;
+    const Epetra_Import import;
+    /** The matrix gathered on process 0 (no rows elsewhere). */
+    std::unique_ptr<Epetra_CrsMatrix> all;
+    DMUMPS_STRUC_C                    mumps{};
+    bool                              initialised = false;
+    std::vector<int>                  rows, columns;
+    std::vector<double>               values;
+  };
 
 
 
@@ -53,6 +300,12 @@ namespace bsmpm
     if (!factory.Query(name))
       return Status::unavailable;
     solver.reset();
+    gathered.reset();
+    if (name == "Amesos_Mumps" && matrix.Comm().NumProc() > 1)
+      {
+        gathered = std::make_unique<GatheredMumps>(matrix);
+        return gathered->factorize(matrix);
+      }
     matrix_copy = std::make_unique<Epetra_CrsMatrix>(matrix);
     problem.SetOperator(matrix_copy.get());
     const bool mumps = name == "Amesos_Mumps";
@@ -89,31 +342,12 @@ namespace bsmpm
         if (const auto *comm =
               dynamic_cast<const Epetra_MpiComm *>(&matrix.Comm()))
           status = dealii::Utilities::MPI::broadcast(comm->Comm(), status, 0);
-        switch (status)
-          {
-            case -8:
-            case -9:
-            case -11:
-            case -14:
-            case -15:
-            case -17:
-            case -20:
-              // Workspace too small: more.
-              if (workspace < 1600)
-                continue;
-              return Status::out_of_memory;
-            case -5:
-            case -7:
-            case -13:
-            case -19:
-              // An allocation failed.
-              return Status::out_of_memory;
-            case -6:
-            case -10:
-              return Status::singular;
-            default:
-              return Status::other;
-          }
+        const int error_class = mumps_error_class(status);
+        if (error_class >= 0)
+          return static_cast<Status>(error_class);
+        // Workspace too small: more.
+        if (workspace == 1600)
+          return Status::out_of_memory;
       }
     return Status::out_of_memory;
   }
@@ -123,6 +357,8 @@ namespace bsmpm
   DirectSolver::Status
   DirectSolver::refactorize(const Epetra_CrsMatrix &matrix)
   {
+    if (gathered)
+      return gathered->refactorize(matrix);
     if (!solver || matrix.NumMyRows() != matrix_copy->NumMyRows())
       return Status::other;
     // The same structure: the values row by row.
@@ -148,6 +384,8 @@ namespace bsmpm
   DirectSolver::solve(TrilinosWrappers::MPI::Vector       &x,
                       const TrilinosWrappers::MPI::Vector &b)
   {
+    if (gathered)
+      return gathered->solve(x.trilinos_vector(), b.trilinos_vector());
     problem.SetLHS(&x.trilinos_vector());
     problem.SetRHS(const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
     Silence quiet(std::cerr);

@@ -19,6 +19,9 @@ The number of points that yielded may differ by one in two hundred
 surface has a trial yield function of zero to round-off, and counts as
 yielding (f > 0) in one run and not in the other; every field is still
 compared.
+
+--repeat runs the parallel case twice and requires the same bits in both
+(errors, quantities and every step's record in summary.json).
 """
 import argparse
 import json
@@ -71,6 +74,10 @@ def main():
     parser.add_argument("--np", type=int, default=2)
     parser.add_argument("--tolerance", type=float, default=1e-10)
     parser.add_argument("--yield-tolerance", type=float, default=0.005)
+    parser.add_argument("--repeat", action="store_true",
+                        help="run the parallel case twice as well: both "
+                        "runs must give the same bits in every error, "
+                        "quantity and Newton residual of every step")
     parser.add_argument("--set", action="append", default=[])
     args = parser.parse_args()
 
@@ -84,8 +91,28 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         serial = run(base, os.path.join(tmp, "serial"))
         parallel = run(mpirun + base, os.path.join(tmp, "parallel"))
+        again = (run(mpirun + base, os.path.join(tmp, "again"))
+                 if args.repeat else None)
 
     failed = False
+    if again is not None:
+        # One run must give the bits of the next (equal, not close: a
+        # difference of round-off grows where a decision flips on it).
+        for section in ("errors", "quantities"):
+            differ = sorted(k for k in set(parallel[section]) | set(again[section])
+                            if parallel[section].get(k) != again[section].get(k))
+            if differ:
+                print(f"np={args.np} run twice: {section} differ: " +
+                      ", ".join(f"{k} {parallel[section].get(k)!r} "
+                                f"{again[section].get(k)!r}" for k in differ[:4]))
+                failed = True
+        for a, b in zip(parallel["steps"], again["steps"]):
+            if a != b:
+                print(f"np={args.np} run twice: step {a['step']} differs")
+                failed = True
+                break
+        if not failed:
+            print(f"np={args.np} run twice: the same bits")
     for key in ("n_cells", "n_dofs", "n_material_points", "n_tracking_points"):
         if serial[key] != parallel[key]:
             print(f"{key}: serial {serial[key]} != parallel {parallel[key]}")

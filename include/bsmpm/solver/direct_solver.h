@@ -30,6 +30,18 @@ namespace bsmpm
    * repeated with ICNTL(14) = 100, 400 and 1600. Amesos takes ICNTL(14)
    * through its parameter list (sublist "mumps"); deal.II 9.4's
    * TrilinosWrappers::SolverDirect has no parameter for it.
+   *
+   * MUMPS on several processes gives results that differ in the last bits
+   * from one run to the next (its fronts' contributions are added in the
+   * order their messages arrive, and it chooses helpers for large fronts
+   * by their load): two identical runs of the deep penetration at np = 2
+   * parted at 5e-15 .. 3e-13 within the first 4 steps (doc/contact.md),
+   * enough to flip any decision that sits on a threshold. Debian's Amesos
+   * cannot give MUMPS fewer processes than the matrix has (it lacks
+   * MPI_Comm_c2f), so on more than one process the matrix is gathered on
+   * process 0 and factorised there by MUMPS alone (its C interface on
+   * MPI_COMM_SELF): one run gives the same bits as the next. KLU gathers the
+   * matrix on process 0 itself.
    */
   class DirectSolver
   {
@@ -66,6 +78,10 @@ namespace bsmpm
           const TrilinosWrappers::MPI::Vector &b);
 
   private:
+    /** MUMPS on process 0 alone, for a matrix on several processes. */
+    class GatheredMumps;
+
+    std::unique_ptr<GatheredMumps>     gathered;
     std::unique_ptr<Epetra_CrsMatrix>  matrix_copy;
     Epetra_LinearProblem               problem;
     std::unique_ptr<Amesos_BaseSolver> solver;
