@@ -76,7 +76,8 @@ for np, summary in summaries.items():
         continue
     steps = summary["steps"]
     print(f"np = {np}: {summary['status']}, {len(steps)} steps")
-    print("step  u/B    q (kPa)  contact (m)  increments  inserted/removed")
+    print("step  u/B    q (kPa)  contact (m)  increments  newton  "
+          "inserted/removed")
     for s in steps:
         q = s["quantities"]
         inserted = sum(v for k, v in q.items() if k.endswith("_inserted"))
@@ -84,7 +85,9 @@ for np, summary in summaries.items():
         print(f"{s['step']:4d}  {0.01075 * s['step'] / 2.15:.3f}  "
               f"{q['rigid_body_1_force_y'] / half_width:8.2f}  "
               f"{q['rigid_body_1_contact_length']:.3f}  "
-              f"{s['increments']:10d}  {int(inserted)}/{int(removed)}")
+              f"{s['increments']:10d}  "
+              f"{len(s.get('newton_residuals', [])):6d}  "
+              f"{int(inserted)}/{int(removed)}")
     if len(steps) != args.steps:
         problems.append(f"np = {np}: {len(steps)} of {args.steps} steps")
     if args.no_cuts:
