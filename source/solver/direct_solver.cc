@@ -127,27 +127,32 @@ namespace bsmpm
               // Those of Amesos_Mumps::SetICNTLandCNTL() for one process:
               // silent, automatic permutation, ordering and scaling, no
               // iterative refinement, the matrix centralised on the host.
-              for (const int k : {1, 2, 3, 4})
-                mumps.icntl[k - 1] = -1;
-              mumps.icntl[5 - 1]  = 0;
-              mumps.icntl[6 - 1]  = 7;
-              mumps.icntl[7 - 1]  = 7;
-              mumps.icntl[8 - 1]  = 7;
-              mumps.icntl[9 - 1]  = 1;
-              mumps.icntl[10 - 1] = 0;
-              mumps.icntl[11 - 1] = 0;
-              mumps.icntl[12 - 1] = 0;
-              mumps.icntl[13 - 1] = 0;
-              mumps.icntl[15 - 1] = 0;
-              mumps.icntl[16 - 1] = 0;
-              mumps.icntl[18 - 1] = 0;
-              mumps.n             = all_rows.NumGlobalElements();
-              mumps.nnz           = values.size();
-              mumps.nz            = values.size();
-              mumps.irn           = rows.data();
-              mumps.jcn           = columns.data();
-              mumps.a             = values.data();
-              mumps.job           = 1;
+              // Pairs of ICNTL(k) and its value.
+              static constexpr int controls[][2] = {{1, -1},
+                                                    {2, -1},
+                                                    {3, -1},
+                                                    {4, -1},
+                                                    {5, 0},
+                                                    {6, 7},
+                                                    {7, 7},
+                                                    {8, 7},
+                                                    {9, 1},
+                                                    {10, 0},
+                                                    {11, 0},
+                                                    {12, 0},
+                                                    {13, 0},
+                                                    {15, 0},
+                                                    {16, 0},
+                                                    {18, 0}};
+              for (const auto &control : controls)
+                mumps.icntl[control[0] - 1] = control[1];
+              mumps.n   = all_rows.NumGlobalElements();
+              mumps.nnz = values.size();
+              mumps.nz  = values.size();
+              mumps.irn = rows.data();
+              mumps.jcn = columns.data();
+              mumps.a   = values.data();
+              mumps.job = 1;
               dmumps_c(&mumps);
               if (mumps.infog[0] < 0)
                 {
