@@ -13,8 +13,10 @@
 #include <dmumps_c.h>
 
 #include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 namespace bsmpm
@@ -40,6 +42,30 @@ namespace bsmpm
       std::ostream      &stream;
       std::streambuf    *saved;
     };
+
+
+
+    /** @p value of process 0 on every process (MPI_Bcast), the others
+     * waiting asleep, testing every 0.2 ms, instead of in Open MPI's busy
+     * polling: they wait for the whole factorisation on process 0, and on
+     * a machine without a core to spare a polling process takes half of
+     * process 0's. */
+    int
+    broadcast_from_host(const MPI_Comm communicator, int value)
+    {
+      MPI_Request request;
+      int error = MPI_Ibcast(&value, 1, MPI_INT, 0, communicator, &request);
+      AssertThrowMPI(error);
+      int done = 0;
+      while (true)
+        {
+          error = MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+          AssertThrowMPI(error);
+          if (done)
+            return value;
+          std::this_thread::sleep_for(std::chrono::microseconds(200));
+        }
+    }
 
 
 
@@ -164,8 +190,7 @@ namespace bsmpm
                 status = numeric_factorization();
             }
         }
-      return static_cast<Status>(
-        dealii::Utilities::MPI::broadcast(communicator, status, 0));
+      return static_cast<Status>(broadcast_from_host(communicator, status));
     }
 
     /** The factorisation of @p matrix, of the structure factorize() saw,
@@ -178,8 +203,7 @@ namespace bsmpm
         dealii::Utilities::MPI::min(same ? 1 : 0, communicator) == 1 ?
                  (on_host ? numeric_factorization() : 0) :
                  static_cast<int>(Status::other);
-      return static_cast<Status>(
-        dealii::Utilities::MPI::broadcast(communicator, status, 0));
+      return static_cast<Status>(broadcast_from_host(communicator, status));
     }
 
     bool
@@ -197,7 +221,7 @@ namespace bsmpm
           dmumps_c(&mumps);
           error = mumps.infog[0] < 0 ? 1 : 0;
         }
-      error = dealii::Utilities::MPI::broadcast(communicator, error, 0);
+      error = broadcast_from_host(communicator, error);
       if (error == 0)
         x.Export(gathered, import, Insert);
       return error == 0;
