@@ -115,8 +115,8 @@ for other, np in zip(runs[1:], list(summaries)[1:]):
 if args.repeat and summaries[args.np[-1]] is not None:
     # One run must give the bits of the next: every quantity and Newton
     # residual of every step (MUMPS on two processes added its fronts in
-    # the order their messages arrived: two runs parted at 1e-14 in step
-    # 1 .. 4 and by a few percent later, doc/contact.md).
+    # the order their messages arrived: two runs parted by 5e-15 .. 3e-13
+    # within steps 1 .. 4, doc/contact.md).
     first, again = summaries[args.np[-1]], run(args.np[-1])
     if again is not None:
         for a, b in zip(first["steps"], again["steps"]):
