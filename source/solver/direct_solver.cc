@@ -4,12 +4,10 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
-#include <Amesos_Mumps.h>
 #include <Epetra_Import.h>
 #include <Epetra_Map.h>
 #include <Epetra_MpiComm.h>
 #include <Epetra_Vector.h>
-#include <Teuchos_ParameterList.hpp>
 #include <dmumps_c.h>
 
 #include <algorithm>
@@ -69,6 +67,54 @@ namespace bsmpm
 
 
 
+    /** Whether the rows on this process of @p matrix, which has every row
+     * there, are symmetric to round-off: |a_ij - a_ji| <= 1e-10 of the
+     * larger diagonal of i and j (an entry without its mirror counts as
+     * zero there). The L D L^T of MUMPS reads the lower triangle only, so
+     * an assembly that is not symmetric would be solved wrongly, not
+     * refused: checked in Debug builds, which run the tests. */
+    bool
+    symmetric_to_round_off(const Epetra_CrsMatrix &matrix)
+    {
+      const int n = matrix.NumMyRows();
+      // Each row's entries by global column, sorted.
+      std::vector<std::vector<std::pair<int, double>>> by_row(n);
+      std::vector<double>                              diagonal(n, 0.);
+      for (int row = 0; row < n; ++row)
+        {
+          int     count   = 0;
+          double *values  = nullptr;
+          int    *indices = nullptr;
+          matrix.ExtractMyRowView(row, count, values, indices);
+          for (int k = 0; k < count; ++k)
+            {
+              const int column = matrix.GCID(indices[k]);
+              by_row[row].emplace_back(column, values[k]);
+              if (column == matrix.GRID(row))
+                diagonal[row] = std::abs(values[k]);
+            }
+          std::sort(by_row[row].begin(), by_row[row].end());
+        }
+      const auto entry = [&](const int row, const int column) {
+        const auto &r = by_row[matrix.LRID(row)];
+        const auto  it =
+          std::lower_bound(r.begin(), r.end(), std::make_pair(column, -1e300));
+        return it != r.end() && it->first == column ? it->second : 0.;
+      };
+      for (int row = 0; row < n; ++row)
+        {
+          const int i = matrix.GRID(row);
+          for (const auto &[j, a_ij] : by_row[row])
+            if (j > i &&
+                std::abs(a_ij - entry(j, i)) >
+                  1e-10 * std::max(diagonal[row], diagonal[matrix.LRID(j)]))
+              return false;
+        }
+      return true;
+    }
+
+
+
     /** What MUMPS' INFOG(1) < 0 means for the caller (MUMPS users' guide,
      * "Error diagnostics"); -1 where more workspace may help. */
     int
@@ -101,26 +147,38 @@ namespace bsmpm
 
 
   /**
-   * The matrix of all processes gathered on process 0 (an Epetra_Import
-   * onto a map that puts every row there), as triplets, factorised by
-   * MUMPS on MPI_COMM_SELF with the controls Amesos_Mumps sets; the
-   * right-hand side is gathered likewise and the solution scattered back.
-   * Every call is collective; the other processes only send and receive.
+   * MUMPS on process 0 alone, through its C interface on MPI_COMM_SELF. A
+   * matrix of several processes is gathered there first (an Epetra_Import
+   * onto a map that puts every row on process 0) and the right-hand side
+   * likewise, the solution scattered back; on one process the matrix is
+   * read as it is. A symmetric matrix is factorised as L D L^T (MUMPS'
+   * SYM = 2, symmetric indefinite: the plastic and contact tangents need
+   * not be definite) from its lower triangle, with half the entries and
+   * about half the work of an LU (doc/benchmarks.md). Every call is
+   * collective; the other processes only send and receive.
    */
-  class DirectSolver::GatheredMumps
+  class DirectSolver::HostMumps
   {
   public:
-    explicit GatheredMumps(const Epetra_CrsMatrix &matrix)
+    HostMumps(const Epetra_CrsMatrix &matrix, const bool symmetric)
       : communicator(dynamic_cast<const Epetra_MpiComm &>(matrix.Comm()).Comm())
       , on_host(dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
-      , all_rows(matrix.RowMap().NumGlobalElements(),
-                 on_host ? matrix.RowMap().NumGlobalElements() : 0,
-                 matrix.RowMap().IndexBase(),
-                 matrix.Comm())
-      , import(all_rows, matrix.RowMap())
-    {}
+      , symmetric(symmetric)
+    {
+      if (matrix.Comm().NumProc() > 1)
+        {
+          all_rows =
+            std::make_unique<Epetra_Map>(matrix.RowMap().NumGlobalElements(),
+                                         on_host ?
+                                           matrix.RowMap().NumGlobalElements() :
+                                           0,
+                                         matrix.RowMap().IndexBase(),
+                                         matrix.Comm());
+          import = std::make_unique<Epetra_Import>(*all_rows, matrix.RowMap());
+        }
+    }
 
-    ~GatheredMumps()
+    ~HostMumps()
     {
       if (initialised)
         {
@@ -142,7 +200,7 @@ namespace bsmpm
         {
           mumps.comm_fortran = MPI_Comm_c2f(MPI_COMM_SELF);
           mumps.par          = 1;
-          mumps.sym          = 0;
+          mumps.sym          = symmetric ? 2 : 0;
           mumps.job          = -1;
           dmumps_c(&mumps);
           initialised = mumps.infog[0] >= 0;
@@ -150,7 +208,7 @@ namespace bsmpm
             status = static_cast<int>(Status::other);
           else
             {
-              // Those of Amesos_Mumps::SetICNTLandCNTL() for one process:
+              // Those Amesos_Mumps::SetICNTLandCNTL() sets for one process:
               // silent, automatic permutation, ordering and scaling, no
               // iterative refinement, the matrix centralised on the host.
               // Pairs of ICNTL(k) and its value.
@@ -172,7 +230,13 @@ namespace bsmpm
                                                     {18, 0}};
               for (const auto &control : controls)
                 mumps.icntl[control[0] - 1] = control[1];
-              mumps.n   = all_rows.NumGlobalElements();
+              // L D L^T with pivoting does not stop at a zero pivot as the
+              // LU does (INFOG(1) = -10): it reports the null pivots it
+              // met (ICNTL(24) = 1, INFOG(28)), which numeric_factorization()
+              // calls singular.
+              if (symmetric)
+                mumps.icntl[24 - 1] = 1;
+              mumps.n   = matrix.NumGlobalRows();
               mumps.nnz = values.size();
               mumps.nz  = values.size();
               mumps.irn = rows.data();
@@ -209,8 +273,20 @@ namespace bsmpm
     bool
     solve(Epetra_MultiVector &x, const Epetra_MultiVector &b)
     {
-      Epetra_Vector gathered(all_rows);
-      gathered.Import(b, import, Insert);
+      if (!import)
+        {
+          // One process: MUMPS overwrites the right-hand side with the
+          // solution.
+          x          = b;
+          mumps.rhs  = x[0];
+          mumps.nrhs = 1;
+          mumps.lrhs = x.MyLength();
+          mumps.job  = 3;
+          dmumps_c(&mumps);
+          return mumps.infog[0] >= 0;
+        }
+      Epetra_Vector gathered(*all_rows);
+      gathered.Import(b, *import, Insert);
       int error = 0;
       if (on_host && gathered.MyLength() > 0)
         {
@@ -223,62 +299,88 @@ namespace bsmpm
         }
       error = broadcast_from_host(communicator, error);
       if (error == 0)
-        x.Export(gathered, import, Insert);
+        x.Export(gathered, *import, Insert);
       return error == 0;
     }
 
   private:
-    /** The local triplets (1-based) of @p matrix on process 0; with
-     * @p structure the rows and columns are taken anew, else only the
-     * values into the gathered matrix of the last call with @p structure
-     * (its entries in place: a refactorisation of 29 k unknowns spent a
-     * third of its time building the gathered matrix anew), and false if
-     * @p matrix has an entry outside that structure. */
+    /** The triplets (1-based) of @p matrix on process 0, of its lower
+     * triangle if symmetric; with @p structure the rows and columns are
+     * taken anew, else only the values, of the structure of the last call
+     * with @p structure (a gathered matrix keeps its entries in place: a
+     * refactorisation of 29 k unknowns spent a third of its time building
+     * it anew), and false if @p matrix has an entry outside that
+     * structure. */
     bool
     gather(const Epetra_CrsMatrix &matrix, const bool structure)
     {
-      if (structure || !all)
+      const Epetra_CrsMatrix *host = &matrix;
+      if (import)
         {
-          all = std::make_unique<Epetra_CrsMatrix>(Copy, all_rows, 0);
-          if (all->Import(matrix, import, Insert) != 0 ||
-              all->FillComplete() != 0)
+          if (structure || !all)
             {
-              all.reset();
-              return false;
+              all = std::make_unique<Epetra_CrsMatrix>(Copy, *all_rows, 0);
+              if (all->Import(matrix, *import, Insert) != 0 ||
+                  all->FillComplete() != 0)
+                {
+                  all.reset();
+                  return false;
+                }
             }
-          const int base = all_rows.IndexBase();
+          else
+            {
+              // The same structure: its entries summed from zero take the
+              // values bit for bit; an entry outside it is an error of Add.
+              all->PutScalar(0.);
+              if (all->Import(matrix, *import, Add) != 0)
+                return false;
+            }
+          host = all.get();
+        }
+      if (structure)
+        {
+          Assert(!symmetric || symmetric_to_round_off(*host),
+                 dealii::ExcMessage(
+                   "The direct solver was told the matrix is symmetric, "
+                   "and it is not: MUMPS' L D L^T would solve another "
+                   "system."));
           rows.clear();
           columns.clear();
-          for (int row = 0; row < all->NumMyRows(); ++row)
+          kept.clear();
+          const int base = host->RowMap().IndexBase();
+          for (int row = 0; row < host->NumMyRows(); ++row)
             {
               int  n       = 0;
               int *indices = nullptr;
-              all->Graph().ExtractMyRowView(row, n, indices);
+              host->Graph().ExtractMyRowView(row, n, indices);
               for (int k = 0; k < n; ++k)
                 {
                   // MUMPS counts from 1.
-                  rows.push_back(all->GRID(row) - base + 1);
-                  columns.push_back(all->GCID(indices[k]) - base + 1);
+                  const int i = host->GRID(row) - base + 1;
+                  const int j = host->GCID(indices[k]) - base + 1;
+                  kept.push_back(!symmetric || j <= i);
+                  if (kept.back())
+                    {
+                      rows.push_back(i);
+                      columns.push_back(j);
+                    }
                 }
             }
         }
-      else
-        {
-          // The same structure: its entries summed from zero take the
-          // values bit for bit; an entry outside it is an error of Add.
-          all->PutScalar(0.);
-          if (all->Import(matrix, import, Add) != 0)
-            return false;
-        }
       values.clear();
-      for (int row = 0; row < all->NumMyRows(); ++row)
+      std::size_t entry = 0;
+      for (int row = 0; row < host->NumMyRows(); ++row)
         {
           int     n       = 0;
           double *entries = nullptr;
-          all->ExtractMyRowView(row, n, entries);
-          values.insert(values.end(), entries, entries + n);
+          host->ExtractMyRowView(row, n, entries);
+          if (entry + n > kept.size())
+            return false;
+          for (int k = 0; k < n; ++k)
+            if (kept[entry++])
+              values.push_back(entries[k]);
         }
-      return values.size() == rows.size();
+      return entry == kept.size() && values.size() == rows.size();
     }
 
     /** MUMPS' factorisation (JOB = 2) of the values, with more workspace
@@ -293,7 +395,8 @@ namespace bsmpm
           mumps.job           = 2;
           dmumps_c(&mumps);
           if (mumps.infog[0] >= 0)
-            return static_cast<int>(Status::success);
+            return static_cast<int>(mumps.infog[28 - 1] > 0 ? Status::singular :
+                                                              Status::success);
           const int error = mumps_error_class(mumps.infog[0]);
           if (error >= 0)
             return error;
@@ -301,16 +404,21 @@ namespace bsmpm
       return static_cast<int>(Status::out_of_memory);
     }
 
-    const MPI_Comm      communicator;
-    const bool          on_host;
-    const Epetra_Map    all_rows;
-    const Epetra_Import import;
+    const MPI_Comm communicator;
+    const bool     on_host;
+    const bool     symmetric;
+    /** On several processes: every row on process 0, and the import
+     * there. */
+    std::unique_ptr<Epetra_Map>    all_rows;
+    std::unique_ptr<Epetra_Import> import;
     /** The matrix gathered on process 0 (no rows elsewhere). */
     std::unique_ptr<Epetra_CrsMatrix> all;
     DMUMPS_STRUC_C                    mumps{};
     bool                              initialised = false;
-    std::vector<int>                  rows, columns;
-    std::vector<double>               values;
+    /** Whether each entry of the host's rows goes to MUMPS. */
+    std::vector<bool>   kept;
+    std::vector<int>    rows, columns;
+    std::vector<double> values;
   };
 
 
@@ -323,62 +431,37 @@ namespace bsmpm
 
   DirectSolver::Status
   DirectSolver::factorize(const Epetra_CrsMatrix &matrix,
-                          const std::string      &name)
+                          const std::string      &name,
+                          const bool              symmetric)
   {
+    solver.reset();
+    mumps.reset();
+    if (name == "MUMPS")
+      {
+        mumps = std::make_unique<HostMumps>(matrix, symmetric);
+        return mumps->factorize(matrix);
+      }
     Amesos factory;
     if (!factory.Query(name))
       return Status::unavailable;
-    solver.reset();
-    gathered.reset();
-    if (name == "Amesos_Mumps" && matrix.Comm().NumProc() > 1)
-      {
-        gathered = std::make_unique<GatheredMumps>(matrix);
-        return gathered->factorize(matrix);
-      }
     matrix_copy = std::make_unique<Epetra_CrsMatrix>(matrix);
     problem.SetOperator(matrix_copy.get());
-    const bool mumps = name == "Amesos_Mumps";
-    for (const int workspace : {20, 100, 400, 1600})
-      {
-        solver.reset(factory.Create(name, problem));
-        if (!solver)
-          return Status::unavailable;
-        if (mumps && workspace != 20)
-          {
-            Teuchos::ParameterList parameters;
-            parameters.sublist("mumps").set("ICNTL(14)", workspace);
-            solver->SetParameters(parameters);
-          }
-        int error = 0;
-        {
-          Silence quiet(std::cerr);
-          error = solver->SymbolicFactorization();
-          if (error == 0)
-            error = solver->NumericFactorization();
-        }
-        if (error == 0)
-          return Status::success;
-        if (!mumps)
-          return error == StructurallySingularMatrixError ||
-                     error == NumericallySingularMatrixError ?
-                   Status::singular :
-                   Status::other;
-        // INFOG is defined on the host, process 0.
-        auto *mumps_solver = dynamic_cast<Amesos_Mumps *>(solver.get());
-        int   status = mumps_solver != nullptr && mumps_solver->GetINFOG() ?
-                         mumps_solver->GetINFOG()[0] :
-                         0;
-        if (const auto *comm =
-              dynamic_cast<const Epetra_MpiComm *>(&matrix.Comm()))
-          status = dealii::Utilities::MPI::broadcast(comm->Comm(), status, 0);
-        const int error_class = mumps_error_class(status);
-        if (error_class >= 0)
-          return static_cast<Status>(error_class);
-        // Workspace too small: more.
-        if (workspace == 1600)
-          return Status::out_of_memory;
-      }
-    return Status::out_of_memory;
+    solver.reset(factory.Create(name, problem));
+    if (!solver)
+      return Status::unavailable;
+    int error = 0;
+    {
+      Silence quiet(std::cerr);
+      error = solver->SymbolicFactorization();
+      if (error == 0)
+        error = solver->NumericFactorization();
+    }
+    if (error == 0)
+      return Status::success;
+    return error == StructurallySingularMatrixError ||
+               error == NumericallySingularMatrixError ?
+             Status::singular :
+             Status::other;
   }
 
 
@@ -386,8 +469,8 @@ namespace bsmpm
   DirectSolver::Status
   DirectSolver::refactorize(const Epetra_CrsMatrix &matrix)
   {
-    if (gathered)
-      return gathered->refactorize(matrix);
+    if (mumps)
+      return mumps->refactorize(matrix);
     if (!solver || matrix.NumMyRows() != matrix_copy->NumMyRows())
       return Status::other;
     // The same structure: the values row by row.
@@ -413,8 +496,8 @@ namespace bsmpm
   DirectSolver::solve(TrilinosWrappers::MPI::Vector       &x,
                       const TrilinosWrappers::MPI::Vector &b)
   {
-    if (gathered)
-      return gathered->solve(x.trilinos_vector(), b.trilinos_vector());
+    if (mumps)
+      return mumps->solve(x.trilinos_vector(), b.trilinos_vector());
     problem.SetLHS(&x.trilinos_vector());
     problem.SetRHS(const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
     Silence quiet(std::cerr);

@@ -259,7 +259,8 @@ namespace bsmpm
   LinearSolver::Report
   LinearSolver::solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
                              TrilinosWrappers::MPI::Vector        &solution,
-                             const TrilinosWrappers::MPI::Vector  &rhs) const
+                             const TrilinosWrappers::MPI::Vector  &rhs,
+                             const bool symmetric) const
   {
     Report                  report;
     const double            rhs_norm  = rhs.l2_norm();
@@ -273,10 +274,12 @@ namespace bsmpm
     // collective.
     const MPI_Comm comm = matrix.get_mpi_communicator();
     const bool     same_structure =
-      direct_factors &&
-      Utilities::MPI::min(
-        (direct_matrix == &A && direct_structure == structure) ? 1 : 0, comm) ==
-        1;
+      direct_factors && Utilities::MPI::min((direct_matrix == &A &&
+                                             direct_structure == structure &&
+                                             direct_symmetric == symmetric) ?
+                                              1 :
+                                              0,
+                                            comm) == 1;
     // The matrix of the last factorisation, unchanged (solve_unchanged()):
     // its factors serve.
     if (same_structure && unchanged_matrix)
@@ -297,12 +300,13 @@ namespace bsmpm
         direct_factors   = std::make_unique<DirectSolver>();
         direct_matrix    = &A;
         direct_structure = structure;
-        mumps            = direct_factors->factorize(A, "Amesos_Mumps");
+        direct_symmetric = symmetric;
+        mumps            = direct_factors->factorize(A, "MUMPS", symmetric);
         if (mumps == DirectSolver::Status::success)
           report.method = "direct (MUMPS)";
         else
           {
-            klu = direct_factors->factorize(A, "Amesos_Klu");
+            klu = direct_factors->factorize(A, "Amesos_Klu", symmetric);
             if (klu == DirectSolver::Status::success)
               report.method = "direct (KLU)";
           }
@@ -716,7 +720,7 @@ namespace bsmpm
        (matrix.m() <= automatic_threshold || cg_failed || cg_slow));
     if (use_direct)
       {
-        Report report = solve_direct(matrix, solution, rhs);
+        Report report = solve_direct(matrix, solution, rhs, symmetric);
         if (cg_slow && !cg_slow_said && !cg_failed)
           {
             report.method += ", cg slow";
@@ -773,7 +777,7 @@ namespace bsmpm
       }
     // Factorise, now and in the following load steps.
     cg_failed     = true;
-    Report direct = solve_direct(matrix, solution, rhs);
+    Report direct = solve_direct(matrix, solution, rhs, symmetric);
     direct.method += ", cg failed";
     return direct;
   }

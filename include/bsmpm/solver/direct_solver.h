@@ -16,32 +16,36 @@ namespace bsmpm
   using namespace dealii;
 
   /**
-   * A sparse LU factorisation by an Amesos solver (MUMPS or KLU) that says
-   * why it failed instead of passing on the error numbers of Trilinos or
-   * MUMPS, and keeps the solvers' own error lines (Amesos_Mumps writes
-   * "Amesos_Mumps : ERROR" and INFOG to std::cerr at any verbosity) off the
+   * A sparse factorisation, by MUMPS (its C interface) or by KLU (through
+   * Amesos), that says why it failed instead of passing on the error
+   * numbers of Trilinos or MUMPS, and keeps the solvers' own lines off the
    * terminal.
    *
+   * A symmetric matrix goes to MUMPS as its lower triangle and is
+   * factorised as L D L^T with pivoting (SYM = 2): the Newton tangents of
+   * the small-strain plastic scenes are symmetric but need not be
+   * definite. Against MUMPS' LU of the same matrices, half the entries in
+   * the factors and about 0.55 of the factorisation's time (plastic footing,
+   * 29 k unknowns, doc/benchmarks.md).
+   *
    * MUMPS sizes its workspace from the estimate of its analysis enlarged
-   * by ICNTL(14) percent (20 by default in Amesos). Where that is too
-   * little for the pivoting of the factorisation (INFOG(1) = -8, -9, -11,
-   * -14, -15, -17 or -20, MUMPS users' guide, "Error diagnostics"; -9 at
-   * 83 k unknowns on two processes, issue 27), the factorisation is
-   * repeated with ICNTL(14) = 100, 400 and 1600. Amesos takes ICNTL(14)
-   * through its parameter list (sublist "mumps"); deal.II 9.4's
-   * TrilinosWrappers::SolverDirect has no parameter for it.
+   * by ICNTL(14) percent (20 by default). Where that is too little for the
+   * pivoting of the factorisation (INFOG(1) = -8, -9, -11, -14, -15, -17
+   * or -20, MUMPS users' guide, "Error diagnostics"; -9 at 83 k unknowns on
+   * two processes, issue 27), the factorisation is repeated with
+   * ICNTL(14) = 100, 400 and 1600.
    *
    * MUMPS on several processes gives results that differ in the last bits
    * from one run to the next (its fronts' contributions are added in the
    * order their messages arrive, and it chooses helpers for large fronts
    * by their load): two identical runs of the deep penetration at np = 2
    * parted at 5e-15 .. 3e-13 within the first 4 steps (doc/contact.md),
-   * enough to flip any decision that sits on a threshold. Debian's Amesos
-   * cannot give MUMPS fewer processes than the matrix has (it lacks
-   * MPI_Comm_c2f), so on more than one process the matrix is gathered on
-   * process 0 and factorised there by MUMPS alone (its C interface on
-   * MPI_COMM_SELF): one run gives the same bits as the next. KLU gathers the
-   * matrix on process 0 itself.
+   * enough to flip any decision that sits on a threshold. So a matrix of
+   * several processes is gathered on process 0 and factorised there by
+   * MUMPS alone (on MPI_COMM_SELF): one run gives the same bits as the
+   * next. (Debian's Amesos cannot give MUMPS fewer processes than the
+   * matrix has: it lacks MPI_Comm_c2f.) KLU gathers the matrix on process
+   * 0 itself.
    */
   class DirectSolver
   {
@@ -61,11 +65,14 @@ namespace bsmpm
     DirectSolver();
     ~DirectSolver();
 
-    /** Factorises a copy of @p matrix with "Amesos_Mumps" or
-     * "Amesos_Klu" (a copy: the factors may outlive the caller's
-     * matrix, and Amesos reads the matrix when it lets go of them). */
+    /** Factorises @p matrix with "MUMPS" or "Amesos_Klu" (a copy of its
+     * values: the factors may outlive the caller's matrix, and Amesos
+     * reads the matrix when it lets go of them). A @p symmetric matrix
+     * gives MUMPS only its lower triangle. */
     Status
-    factorize(const Epetra_CrsMatrix &matrix, const std::string &name);
+    factorize(const Epetra_CrsMatrix &matrix,
+              const std::string      &name,
+              const bool              symmetric);
 
     /** Factorises @p matrix, whose structure is that of the last
      * factorize(), reusing the symbolic analysis. */
@@ -78,10 +85,10 @@ namespace bsmpm
           const TrilinosWrappers::MPI::Vector &b);
 
   private:
-    /** MUMPS on process 0 alone, for a matrix on several processes. */
-    class GatheredMumps;
+    /** MUMPS on process 0 alone. */
+    class HostMumps;
 
-    std::unique_ptr<GatheredMumps>     gathered;
+    std::unique_ptr<HostMumps>         mumps;
     std::unique_ptr<Epetra_CrsMatrix>  matrix_copy;
     Epetra_LinearProblem               problem;
     std::unique_ptr<Amesos_BaseSolver> solver;

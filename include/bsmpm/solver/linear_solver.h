@@ -107,13 +107,15 @@ namespace bsmpm
     }
 
   private:
-    /** Sparse LU with iterative refinement: MUMPS, with more workspace
-     * if it runs short, else KLU. Throws a message (no error numbers of
-     * Trilinos or MUMPS) if neither factorises the matrix. */
+    /** Sparse LU (L D L^T of a @p symmetric matrix) with iterative
+     * refinement: MUMPS, with more workspace if it runs short, else KLU. Throws
+     * a message (no error numbers of Trilinos or MUMPS) if neither factorises
+     * the matrix. */
     Report
     solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
                  TrilinosWrappers::MPI::Vector        &solution,
-                 const TrilinosWrappers::MPI::Vector  &rhs) const;
+                 const TrilinosWrappers::MPI::Vector  &rhs,
+                 const bool                            symmetric) const;
 
     /** cg amg, cg gmg: the multigrid preconditioner (geometric or ML),
      * kept for later solves. */
@@ -191,6 +193,7 @@ namespace bsmpm
     mutable bool          unchanged_matrix = false;
     mutable const void   *direct_matrix    = nullptr;
     mutable std::uint64_t direct_structure = 0;
+    mutable bool          direct_symmetric = false;
     mutable std::string   direct_method;
 
     /** The AMG hierarchy of the last CG solve, the matrix it was built on
