@@ -176,6 +176,12 @@ namespace bsmpm
                                          matrix.Comm());
           import = std::make_unique<Epetra_Import>(*all_rows, matrix.RowMap());
         }
+      else
+        // solve() hands MUMPS the vector's local entries as its global
+        // rows.
+        Assert(matrix.RowMap().LinearMap() &&
+                 matrix.RowMap().MinMyGID() == matrix.RowMap().IndexBase(),
+               dealii::ExcInternalError());
     }
 
     ~HostMumps()
