@@ -67,6 +67,7 @@ namespace bsmpm
 
 
 
+#ifdef DEBUG
     /** Whether the rows on this process of @p matrix, which has every row
      * there, are symmetric to round-off: |a_ij - a_ji| <= 1e-10 of the
      * larger diagonal of i and j (an entry without its mirror counts as
@@ -112,6 +113,7 @@ namespace bsmpm
         }
       return true;
     }
+#endif
 
 
 
