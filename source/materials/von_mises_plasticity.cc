@@ -113,19 +113,37 @@ namespace bsmpm
                                           std::array<double, 4>  &stress,
                                           std::array<double, 16> &tangent) const
   {
-    // update() step by step (the same numbers), without the rank-4 tangent
-    // of the elastic branch and with the 4 x 4 block of the plastic one.
+    // update() step by step, on the four components of plane strain and in
+    // the order of deal.II's deviator() and norm() (the same numbers: the
+    // norm's terms of xz and yz add zero), without the rank-4 tangent of
+    // the elastic branch and with the 4 x 4 block of the plastic one.
     const SymmetricTensor<2, 3> &eps_tr = state.elastic_strain;
-    const SymmetricTensor<2, 3>  e_tr   = deviator(eps_tr);
-    const double                 norm_e = e_tr.norm();
-    const double                 q_tr   = std::sqrt(6.) * mu * norm_e;
+    Assert(eps_tr[0][2] == 0. && eps_tr[1][2] == 0.,
+           ExcMessage("plane_strain_update() needs xz = yz = 0."));
+    const double tr   = eps_tr[0][0] + eps_tr[1][1] + eps_tr[2][2];
+    const double mean = tr / 3;
+    const double e_xx = eps_tr[0][0] - mean, e_yy = eps_tr[1][1] - mean,
+                 e_zz = eps_tr[2][2] - mean, e_xy = eps_tr[0][1];
+    const double norm_e =
+      std::sqrt(e_xx * e_xx + e_yy * e_yy + e_zz * e_zz + 2. * (e_xy * e_xy));
+    const double q_tr = std::sqrt(6.) * mu * norm_e;
     const double f_tr = q_tr - (sigma_y + H * state.equivalent_plastic_strain);
     if (!(f_tr > 0.))
       {
-        plane_strain_elastic_stress(eps_tr, e_tr, stress);
+        // elastic_stress(eps_tr): K tr 1 + 2 mu e.
+        const double p = kappa * tr;
+        stress[0]      = p + 2. * mu * e_xx;
+        stress[1]      = p + 2. * mu * e_yy;
+        stress[2]      = p + 2. * mu * e_zz;
+        stress[3]      = 2. * mu * e_xy;
         return false;
       }
 
+    SymmetricTensor<2, 3> e_tr;
+    e_tr[0][0]                         = e_xx;
+    e_tr[1][1]                         = e_yy;
+    e_tr[2][2]                         = e_zz;
+    e_tr[0][1]                         = e_xy;
     const double                dgamma = f_tr / (3. * mu + H);
     const SymmetricTensor<2, 3> n      = e_tr / norm_e;
     state.elastic_strain -= dgamma * std::sqrt(1.5) * n;

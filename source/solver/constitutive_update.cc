@@ -376,7 +376,9 @@ namespace bsmpm
 
 
 
-  bool
+  // inline: called for every point of every Newton system, where the call
+  // cost about as much as filling the state.
+  inline bool
   ConstitutiveUpdate::respond(const ArrayView<const double> &props,
                               const Tensor<1, 4>            &de,
                               ConstitutiveState             &state,
@@ -728,7 +730,9 @@ namespace bsmpm
           {
             // add_point()'s small-strain part, written out: this loop is
             // most of a Newton system, and add_point() is too large to be
-            // inlined (its call cost a sixth of the loop).
+            // inlined (its call cost a sixth of the loop). (Two passes, the
+            // return maps first and then the sums in a loop without calls,
+            // cost 1 % more instructions.)
             std::array<double, 4> sigma;
             const bool            yielded = respond(
               props, strain_increment(strain, point.st), state, sigma, D_flat);
