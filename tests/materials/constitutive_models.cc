@@ -19,8 +19,10 @@
 // ln and exp of symmetric tensors with their derivatives, and the
 // parameters. Finally the Newton system of one cell of points
 // (ConstitutiveUpdate, small and finite strain, standard strain and
-// B-bar / F-bar) against central differences of its internal force. Only
-// counts, yes/no and rounded figures are printed.
+// B-bar / F-bar) against central differences of its internal force, and
+// the models' plane_strain_update() (what the Newton system's points call)
+// against update(), bit for bit. Only counts, yes/no and rounded figures
+// are printed.
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
