@@ -738,13 +738,26 @@ namespace bsmpm
               props, strain_increment(strain, point.st), state, sigma, D_flat);
             n_yielded += yielded;
             add_sums(point.st, w, sigma, yielded);
+            // W is only needed in a cell crossed by a support's band:
+            // summed below, then.
+            continue;
           }
-        else if (!add_point(point.st, props, w, true))
+        if (!add_point(point.st, props, w, true))
           return n_yielded;
         W += w;
         Ws += w * point.st[0];
         Wt += w * point.st[1];
       }
+    if (small && band != nullptr)
+      for (const auto &point : cell_points)
+        {
+          const auto  &props = point.props;
+          const double w     = quadrature_weights ? props[Property::weight] :
+                                                    props[Property::volume];
+          if (props[Property::volume] == 0. || w == 0.)
+            continue;
+          W += w;
+        }
 
     // The mean state of the points, weighted as they integrate.
     const auto mean_state = [&]() {
