@@ -15,17 +15,24 @@ namespace bsmpm
   {
     using Property = MaterialPoints::Property;
 
-    /** The points of a cell as ConstitutiveUpdate::cell_system() takes
-     * them. */
+    /** The @p n_points points of a cell as ConstitutiveUpdate::cell_system()
+     * takes them. */
     void
     gather_points(
       const Particles::ParticleHandler<2>::particle_iterator_range &range,
+      const unsigned int                                            n_points,
       std::vector<ConstitutiveUpdate::PointView>                   &views)
     {
-      views.clear();
+      // Written by index into a vector sized once (push_back checked the
+      // capacity of every point).
+      views.resize(n_points);
+      auto view = views.begin();
       for (const auto &particle : range)
-        views.push_back(
-          {particle.get_reference_location(), particle.get_properties()});
+        {
+          view->st    = particle.get_reference_location();
+          view->props = particle.get_properties();
+          ++view;
+        }
     }
 
     /** The elastic strain stored in a point (zz included). */
@@ -927,7 +934,9 @@ namespace bsmpm
         // them again).
         views.clear();
         if (particles.n_particles_in_cell(cell) > 0)
-          gather_points(particles.particles_in_cell(cell), views);
+          gather_points(particles.particles_in_cell(cell),
+                        particles.n_particles_in_cell(cell),
+                        views);
         if (std::none_of(views.begin(), views.end(), [](const auto &point) {
               return point.props[Property::volume] > 0;
             }))
@@ -1025,7 +1034,7 @@ namespace bsmpm
                                            prescribed,
                                            dof_indices);
         const auto cell_points = particles.particles_in_cell(cell);
-        gather_points(cell_points, views);
+        gather_points(cell_points, particles.n_particles_in_cell(cell), views);
         const bool has_material = points.holds_material(cell);
         CellStrain strain;
         if (has_material)
