@@ -74,10 +74,10 @@ namespace bsmpm
                                            std::array<double, 4>      &stress,
                                            std::array<double, 16>     &tangent)
   {
-    stress = {response.stress[0][0],
-              response.stress[1][1],
-              response.stress[2][2],
-              response.stress[0][1]};
+    stress = {{response.stress[0][0],
+               response.stress[1][1],
+               response.stress[2][2],
+               response.stress[0][1]}};
     if (!response.yielded)
       return;
     // deal.II stores the rank-4 tangent as the 6x6 table of the pairs

@@ -621,7 +621,10 @@ namespace bsmpm
               e[2][2] += de[2];
               e[0][1] += de[3] / 2;
               const SymmetricTensor<2, 3> stress = model.elastic_tangent() * e;
-              sigma = {stress[0][0], stress[1][1], stress[2][2], stress[0][1]};
+              sigma[0]                           = stress[0][0];
+              sigma[1]                           = stress[1][1];
+              sigma[2]                           = stress[2][2];
+              sigma[3]                           = stress[0][1];
             }
           n_yielded += count && yielded;
           add_sums(st, w, sigma, yielded);
