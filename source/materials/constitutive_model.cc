@@ -57,6 +57,40 @@ namespace bsmpm
 
 
 
+  bool
+  ConstitutiveModel::plane_strain_update(ConstitutiveState      &state,
+                                         std::array<double, 4>  &stress,
+                                         std::array<double, 16> &tangent) const
+  {
+    const ConstitutiveResponse response = update(state);
+    plane_strain_response(response, stress, tangent);
+    return response.yielded;
+  }
+
+
+
+  void
+  ConstitutiveModel::plane_strain_response(const ConstitutiveResponse &response,
+                                           std::array<double, 4>      &stress,
+                                           std::array<double, 16>     &tangent)
+  {
+    stress = {{response.stress[0][0],
+               response.stress[1][1],
+               response.stress[2][2],
+               response.stress[0][1]}};
+    if (!response.yielded)
+      return;
+    // deal.II stores the rank-4 tangent as the 6x6 table of the pairs
+    // (00, 11, 22, 01, 02, 12): the first four are (xx, yy, zz, xy), and
+    // T_ij01 is the factor of the engineering shear 2 eps_01 (see
+    // ConstitutiveUpdate::voigt_tangent()).
+    for (unsigned int r = 0; r < 4; ++r)
+      for (unsigned int c = 0; c < 4; ++c)
+        tangent[4 * r + c] = response.tangent.access_raw_entry(6 * r + c);
+  }
+
+
+
   double
   ConstitutiveModel::yield_function(const SymmetricTensor<2, 3> &,
                                     const double) const

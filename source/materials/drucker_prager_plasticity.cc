@@ -213,6 +213,30 @@ namespace bsmpm
 
 
 
+  bool
+  DruckerPragerPlasticity::plane_strain_update(
+    ConstitutiveState      &state,
+    std::array<double, 4>  &stress,
+    std::array<double, 16> &tangent) const
+  {
+    // update()'s elastic check, without the rank-4 tangent; a step that
+    // yields takes update() itself.
+    const SymmetricTensor<2, 3> &eps_tr = state.elastic_strain;
+    const SymmetricTensor<2, 3>  e_tr   = deviator(eps_tr);
+    const double                 S      = std::sqrt(2.) * mu * e_tr.norm();
+    const double f_tr = S + eta_f * kappa * trace(eps_tr) - xi_f * c;
+    if (!(f_tr > 0.))
+      {
+        plane_strain_elastic_stress(eps_tr, e_tr, stress);
+        return false;
+      }
+    const ConstitutiveResponse response = update(state);
+    plane_strain_response(response, stress, tangent);
+    return response.yielded;
+  }
+
+
+
   double
   DruckerPragerPlasticity::yield_function(const SymmetricTensor<2, 3> &stress,
                                           const double) const

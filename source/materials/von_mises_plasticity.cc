@@ -108,6 +108,73 @@ namespace bsmpm
 
 
 
+  bool
+  VonMisesPlasticity::plane_strain_update(ConstitutiveState      &state,
+                                          std::array<double, 4>  &stress,
+                                          std::array<double, 16> &tangent) const
+  {
+    // update() step by step, on the four components of plane strain and in
+    // the order of deal.II's deviator() and norm() (the same numbers: the
+    // norm's terms of xz and yz add zero), without the rank-4 tangent of
+    // the elastic branch and with the 4 x 4 block of the plastic one.
+    const SymmetricTensor<2, 3> &eps_tr = state.elastic_strain;
+    Assert(eps_tr[0][2] == 0. && eps_tr[1][2] == 0.,
+           ExcMessage("plane_strain_update() needs xz = yz = 0."));
+    const double tr   = eps_tr[0][0] + eps_tr[1][1] + eps_tr[2][2];
+    const double mean = tr / 3;
+    const double e_xx = eps_tr[0][0] - mean, e_yy = eps_tr[1][1] - mean,
+                 e_zz = eps_tr[2][2] - mean, e_xy = eps_tr[0][1];
+    const double norm_e =
+      std::sqrt(e_xx * e_xx + e_yy * e_yy + e_zz * e_zz + 2. * (e_xy * e_xy));
+    const double q_tr = std::sqrt(6.) * mu * norm_e;
+    const double f_tr = q_tr - (sigma_y + H * state.equivalent_plastic_strain);
+    if (!(f_tr > 0.))
+      {
+        // elastic_stress(eps_tr): K tr 1 + 2 mu e.
+        const double p = kappa * tr;
+        stress[0]      = p + 2. * mu * e_xx;
+        stress[1]      = p + 2. * mu * e_yy;
+        stress[2]      = p + 2. * mu * e_zz;
+        stress[3]      = 2. * mu * e_xy;
+        return false;
+      }
+
+    SymmetricTensor<2, 3> e_tr;
+    e_tr[0][0]                         = e_xx;
+    e_tr[1][1]                         = e_yy;
+    e_tr[2][2]                         = e_zz;
+    e_tr[0][1]                         = e_xy;
+    const double                dgamma = f_tr / (3. * mu + H);
+    const SymmetricTensor<2, 3> n      = e_tr / norm_e;
+    state.elastic_strain -= dgamma * std::sqrt(1.5) * n;
+    state.equivalent_plastic_strain += dgamma;
+    plane_strain_elastic_stress(state.elastic_strain,
+                                deviator(state.elastic_strain),
+                                stress);
+    // The (xx, yy, zz, xy) block of isotropic_stiffness() plus
+    // add_deviatoric_terms(): a I_d is (delta_rc - 1/3) a between normal
+    // components and a / 2 on the shear diagonal; n (x) n takes n's stored
+    // entries.
+    const double beta = 1. - 3. * mu * dgamma / q_tr;
+    const double a    = 2. * mu * (beta - 1.);
+    const double b    = 6. * mu * mu * (dgamma / q_tr - 1. / (3. * mu + H));
+    const double n_voigt[4] = {n[0][0], n[1][1], n[2][2], n[0][1]};
+    for (unsigned int r = 0; r < 4; ++r)
+      for (unsigned int c = 0; c < 4; ++c)
+        {
+          const double deviatoric = r < 3 && c < 3 ?
+                                      (r == c ? 2. / 3. : -1. / 3.) :
+                                    r == c ? 0.5 :
+                                             0.;
+          tangent[4 * r + c] =
+            isotropic_stiffness().access_raw_entry(6 * r + c) +
+            (a * deviatoric + b * n_voigt[r] * n_voigt[c]);
+        }
+    return true;
+  }
+
+
+
   double
   VonMisesPlasticity::yield_function(const SymmetricTensor<2, 3> &stress,
                                      const double eq_plastic_strain) const

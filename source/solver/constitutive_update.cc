@@ -15,17 +15,24 @@ namespace bsmpm
   {
     using Property = MaterialPoints::Property;
 
-    /** The points of a cell as ConstitutiveUpdate::cell_system() takes
-     * them. */
+    /** The @p n_points points of a cell as ConstitutiveUpdate::cell_system()
+     * takes them. */
     void
     gather_points(
       const Particles::ParticleHandler<2>::particle_iterator_range &range,
+      const unsigned int                                            n_points,
       std::vector<ConstitutiveUpdate::PointView>                   &views)
     {
-      views.clear();
+      // Written by index into a vector sized once (push_back checked the
+      // capacity of every point).
+      views.resize(n_points);
+      auto view = views.begin();
       for (const auto &particle : range)
-        views.push_back(
-          {particle.get_reference_location(), particle.get_properties()});
+        {
+          view->st    = particle.get_reference_location();
+          view->props = particle.get_properties();
+          ++view;
+        }
     }
 
     /** The elastic strain stored in a point (zz included). */
@@ -376,10 +383,14 @@ namespace bsmpm
 
 
 
-  ConstitutiveResponse
+  // inline: called for every point of every Newton system, where the call
+  // cost about as much as filling the state.
+  inline bool
   ConstitutiveUpdate::respond(const ArrayView<const double> &props,
                               const Tensor<1, 4>            &de,
-                              ConstitutiveState             &state) const
+                              ConstitutiveState             &state,
+                              std::array<double, 4>         &stress,
+                              std::array<double, 16>        &tangent) const
   {
     SymmetricTensor<2, 3> &e = state.elastic_strain;
     e[0][0]                  = props[Property::elastic_strain] + de[0];
@@ -388,7 +399,7 @@ namespace bsmpm
     e[0][1]                  = props[Property::elastic_strain + 3] + de[3] / 2;
     e[0][2] = e[1][2]               = 0;
     state.equivalent_plastic_strain = props[Property::plastic_strain];
-    return model.update(state);
+    return model.plane_strain_update(state, stress, tangent);
   }
 
 
@@ -558,6 +569,32 @@ namespace bsmpm
     const bool         small    = point_kinematics == Kinematics::small_strain;
     const Tensor<2, 4> D_e =
       small ? voigt_tangent(model.elastic_tangent()) : Tensor<2, 4>();
+    // The Voigt tangent of a point that yields, row by row.
+    std::array<double, 16> D_flat;
+    // Small strain: adds the stress @p sigma of the point at @p st with
+    // weight @p w to S and its tangent to H (D_flat, if it yields) or to M.
+    const auto add_sums = [&](const Point<2>              &st,
+                              const double                 w,
+                              const std::array<double, 4> &sigma,
+                              const bool                   yielded) {
+      const double ws = w * st[0], wt = w * st[1];
+      const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int r = 0; r < 4; ++r)
+          S[a][r] += m[a] * sigma[r];
+      // A step that did not yield has the elastic tangent
+      // (ConstitutiveModel::plane_strain_update()).
+      if (!yielded)
+        {
+          for (unsigned int q = 0; q < 6; ++q)
+            M[q] += m[q];
+          return;
+        }
+      plastic = true;
+      for (unsigned int q = 0; q < 6; ++q)
+        for (unsigned int k = 0; k < 16; ++k)
+          H[q][k] += m[q] * D_flat[k];
+    };
     // Adds the point at @p st with properties @p props and weight @p w;
     // false if it is inverted (f is then NaN).
     // With @p elastic, the point responds with the elastic stiffness
@@ -570,49 +607,27 @@ namespace bsmpm
       if (point_kinematics == Kinematics::small_strain)
         {
           const Tensor<1, 4> de = strain_increment(strain, st);
-          // Made in place: a response declared first and assigned after
-          // (43 numbers zeroed, then copied) cost as much per point as the
-          // sums below.
-          const ConstitutiveResponse response = [&]() {
-            if (!elastic)
-              return respond(props, de, state);
-            ConstitutiveResponse  r;
-            SymmetricTensor<2, 3> e = stored_elastic_strain(props);
-            e[0][0] += de[0];
-            e[1][1] += de[1];
-            e[2][2] += de[2];
-            e[0][1] += de[3] / 2;
-            r.tangent = model.elastic_tangent();
-            r.stress  = r.tangent * e;
-            return r;
-          }();
-          n_yielded += count && response.yielded;
-          const double sigma[4] = {response.stress[0][0],
-                                   response.stress[1][1],
-                                   response.stress[2][2],
-                                   response.stress[0][1]};
-          const double ws = w * st[0], wt = w * st[1];
-          const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int r = 0; r < 4; ++r)
-              S[a][r] += m[a] * sigma[r];
-          // A step that did not yield has the elastic tangent
-          // (ConstitutiveResponse::yielded).
-          if (elastic || !response.yielded)
+          // The stress, and the Voigt tangent only where the point yields
+          // (a point that does not adds D_e through M below).
+          std::array<double, 4> sigma;
+          bool                  yielded = false;
+          if (!elastic)
+            yielded = respond(props, de, state, sigma, D_flat);
+          else
             {
-              for (unsigned int q = 0; q < 6; ++q)
-                M[q] += m[q];
-              return true;
+              SymmetricTensor<2, 3> e = stored_elastic_strain(props);
+              e[0][0] += de[0];
+              e[1][1] += de[1];
+              e[2][2] += de[2];
+              e[0][1] += de[3] / 2;
+              const SymmetricTensor<2, 3> stress = model.elastic_tangent() * e;
+              sigma[0]                           = stress[0][0];
+              sigma[1]                           = stress[1][1];
+              sigma[2]                           = stress[2][2];
+              sigma[3]                           = stress[0][1];
             }
-          plastic              = true;
-          const Tensor<2, 4> D = voigt_tangent(response.tangent);
-          double             D_flat[16];
-          for (unsigned int r = 0; r < 4; ++r)
-            for (unsigned int c = 0; c < 4; ++c)
-              D_flat[4 * r + c] = D[r][c];
-          for (unsigned int q = 0; q < 6; ++q)
-            for (unsigned int k = 0; k < 16; ++k)
-              H[q][k] += m[q] * D_flat[k];
+          n_yielded += count && yielded;
+          add_sums(st, w, sigma, yielded);
           return true;
         }
 
@@ -721,12 +736,38 @@ namespace bsmpm
                                                   props[Property::volume];
         if (props[Property::volume] == 0. || w == 0.)
           continue;
+        if (small)
+          {
+            // add_point()'s small-strain part, written out: this loop is
+            // most of a Newton system, and add_point() is too large to be
+            // inlined (its call cost a sixth of the loop). (Two passes, the
+            // return maps first and then the sums in a loop without calls,
+            // cost 1 % more instructions.)
+            std::array<double, 4> sigma;
+            const bool            yielded = respond(
+              props, strain_increment(strain, point.st), state, sigma, D_flat);
+            n_yielded += yielded;
+            add_sums(point.st, w, sigma, yielded);
+            // W is only needed in a cell crossed by a support's band:
+            // summed below, then.
+            continue;
+          }
         if (!add_point(point.st, props, w, true))
           return n_yielded;
         W += w;
         Ws += w * point.st[0];
         Wt += w * point.st[1];
       }
+    if (small && band != nullptr)
+      for (const auto &point : cell_points)
+        {
+          const auto  &props = point.props;
+          const double w     = quadrature_weights ? props[Property::weight] :
+                                                    props[Property::volume];
+          if (props[Property::volume] == 0. || w == 0.)
+            continue;
+          W += w;
+        }
 
     // The mean state of the points, weighted as they integrate.
     const auto mean_state = [&]() {
@@ -896,7 +937,9 @@ namespace bsmpm
         // them again).
         views.clear();
         if (particles.n_particles_in_cell(cell) > 0)
-          gather_points(particles.particles_in_cell(cell), views);
+          gather_points(particles.particles_in_cell(cell),
+                        particles.n_particles_in_cell(cell),
+                        views);
         if (std::none_of(views.begin(), views.end(), [](const auto &point) {
               return point.props[Property::volume] > 0;
             }))
@@ -994,7 +1037,7 @@ namespace bsmpm
                                            prescribed,
                                            dof_indices);
         const auto cell_points = particles.particles_in_cell(cell);
-        gather_points(cell_points, views);
+        gather_points(cell_points, particles.n_particles_in_cell(cell), views);
         const bool has_material = points.holds_material(cell);
         CellStrain strain;
         if (has_material)
@@ -1014,15 +1057,19 @@ namespace bsmpm
               has_material ? kernel.gradient(d, st) :
                              points.boundary_gradient(
                                kernel, cell, st, increment, prescribed);
-            const Tensor<2, 2>   F_n = stored_deformation_gradient(props);
-            ConstitutiveResponse response;
-            double               det_f = 1;
+            const Tensor<2, 2>     F_n = stored_deformation_gradient(props);
+            std::array<double, 4>  stress;
+            std::array<double, 16> tangent;
+            bool                   yielded = false;
+            double                 det_f   = 1;
             if (finite)
               {
                 const FiniteStrainPoint kin = finite_strain_trial(
                   kernel, strain, st, props, d, &grad, state);
-                det_f    = kin.det_f;
-                response = model.update(state);
+                det_f                        = kin.det_f;
+                const ConstitutiveResponse r = model.update(state);
+                ConstitutiveModel::plane_strain_response(r, stress, tangent);
+                yielded = r.yielded;
               }
             else
               {
@@ -1035,14 +1082,20 @@ namespace bsmpm
                       kernel, cell, st, increment, prescribed);
                     de = Tensor<1, 4>({e[0], e[1], 0., e[2]});
                   }
-                response = respond(props, de, state);
+                yielded = respond(props, de, state, stress, tangent);
               }
             if (has_material && props[Property::volume] > 0.)
               {
                 const double w = quadrature_weights ? props[Property::weight] :
                                                       props[Property::volume];
                 strain_columns(kernel, strain, st, B_block, B_bar_block);
-                const Tensor<2, 4> D = voigt_tangent(response.tangent);
+                // A point that does not yield has the elastic tangent
+                // (ConstitutiveResponse::yielded).
+                Tensor<2, 4> D = D_e;
+                if (yielded)
+                  for (unsigned int r = 0; r < 4; ++r)
+                    for (unsigned int c = 0; c < 4; ++c)
+                      D[r][c] = tangent[4 * r + c];
                 for (unsigned int i = 0; i < n; ++i)
                   {
                     const Tensor<1, 4> DB  = D * B_bar_block[i];
@@ -1070,8 +1123,8 @@ namespace bsmpm
             props[Property::elastic_strain + 2] = eps[2][2];
             props[Property::elastic_strain + 3] = eps[0][1];
             props[Property::plastic_strain] = state.equivalent_plastic_strain;
-            props[Property::yielded]        = response.yielded ? 1. : 0.;
-            n_yielded += response.yielded && props[Property::volume] > 0;
+            props[Property::yielded]        = yielded ? 1. : 0.;
+            n_yielded += yielded && props[Property::volume] > 0;
 
             // The motion of the point: F_n+1 = f F_n.
             const Tensor<2, 2> F = (unit_symmetric_tensor<2>() + grad) * F_n;
@@ -1084,10 +1137,10 @@ namespace bsmpm
 
             // Cauchy stress: the Kirchhoff stress over J in finite strain.
             const double scale          = finite ? 1. / J : 1.;
-            props[Property::stress]     = scale * response.stress[0][0];
-            props[Property::stress + 1] = scale * response.stress[1][1];
-            props[Property::stress + 2] = scale * response.stress[0][1];
-            props[Property::stress_zz]  = scale * response.stress[2][2];
+            props[Property::stress]     = scale * stress[0];
+            props[Property::stress + 1] = scale * stress[1];
+            props[Property::stress + 2] = scale * stress[3];
+            props[Property::stress_zz]  = scale * stress[2];
             if (finite)
               {
                 // V = det(f) V_n; the strain is the logarithmic strain

@@ -19,8 +19,10 @@
 // ln and exp of symmetric tensors with their derivatives, and the
 // parameters. Finally the Newton system of one cell of points
 // (ConstitutiveUpdate, small and finite strain, standard strain and
-// B-bar / F-bar) against central differences of its internal force. Only
-// counts, yes/no and rounded figures are printed.
+// B-bar / F-bar) against central differences of its internal force, and
+// the models' plane_strain_update() (what the Newton system's points call)
+// against update(), bit for bit. Only counts, yes/no and rounded figures
+// are printed.
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
@@ -566,6 +568,76 @@ namespace
             << "c): " << same << " of " << n << " (" << yielded
             << " yielded): stress, elastic strain, eq. plastic strain, tangent"
             << std::endl;
+  }
+
+
+
+  /**
+   * ConstitutiveModel::plane_strain_update(), the return of the Newton
+   * system's points, against update() on plane-strain trial strains
+   * (xz = yz = 0) from well inside the elastic range to far beyond yield:
+   * the same yield flag, stress, returned state and, where the step
+   * yields, the (xx, yy, zz, xy) block of the tangent, bit for bit (the
+   * Newton iterations must not change by its use).
+   */
+  void
+  test_plane_strain_update(Random &random)
+  {
+    const VonMisesPlasticity perfect(E, nu, 1e4, 0.),
+      hardening(E, nu, 1e4, 2e5);
+    const DruckerPragerPlasticity dp(E, nu, 1e4, 30. * degree, 10. * degree),
+      dp_cohesionless(E, nu, 0., 35. * degree, 5. * degree);
+    const LinearElasticModel elastic(E, nu);
+    const std::vector<std::pair<std::string, const ConstitutiveModel *>>
+      models = {{"von Mises, perfectly plastic", &perfect},
+                {"von Mises, hardening", &hardening},
+                {"Drucker-Prager phi 30, psi 10", &dp},
+                {"Drucker-Prager c 0, phi 35, psi 5", &dp_cohesionless},
+                {"linear elastic", &elastic}};
+    for (const auto &[label, model] : models)
+      {
+        unsigned int same = 0, n = 200, yielded = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            // Strains from 1e-6 to 1e-2 (yield near 1e-3), with a pressure
+            // that may reach beyond the cone's apex.
+            const double      scale = std::pow(10., random(-6., -2.));
+            ConstitutiveState a;
+            a.elastic_strain[0][0]       = scale * random(-1., 1.);
+            a.elastic_strain[1][1]       = scale * random(-1., 1.);
+            a.elastic_strain[2][2]       = scale * random(-1., 1.);
+            a.elastic_strain[0][1]       = scale * random(-1., 1.);
+            a.equivalent_plastic_strain  = k % 2 == 0 ? 0. : 1e-3 * k / n;
+            ConstitutiveState          b = a;
+            const ConstitutiveResponse r = model->update(a);
+            std::array<double, 4>      stress;
+            std::array<double, 16>     tangent;
+            tangent.fill(-1.);
+            const bool y = model->plane_strain_update(b, stress, tangent);
+            yielded += y;
+            bool equal =
+              y == r.yielded && stress[0] == r.stress[0][0] &&
+              stress[1] == r.stress[1][1] && stress[2] == r.stress[2][2] &&
+              stress[3] == r.stress[0][1] &&
+              a.elastic_strain == b.elastic_strain &&
+              a.equivalent_plastic_strain == b.equivalent_plastic_strain;
+            // The Voigt tangent: rows and columns (xx, yy, zz, xy), the xy
+            // column the factor of the engineering shear.
+            static constexpr unsigned int index[4][2] = {{0, 0},
+                                                         {1, 1},
+                                                         {2, 2},
+                                                         {0, 1}};
+            for (unsigned int i = 0; i < 4; ++i)
+              for (unsigned int j = 0; j < 4; ++j)
+                equal = equal && tangent[4 * i + j] ==
+                                   (y ? r.tangent[index[i][0]][index[i][1]]
+                                                 [index[j][0]][index[j][1]] :
+                                        -1.);
+            same += equal;
+          }
+        deallog << "plane_strain_update() = update(), " << label << ": " << same
+                << " of " << n << " (" << yielded << " yielded)" << std::endl;
+      }
   }
 
 
@@ -1259,4 +1331,9 @@ main()
   test_plane_strain_limits();
   test_tensor_functions(random);
   test_cell_tangents(random);
+  // Its own random numbers: the checks above keep theirs.
+  Random plane_strain_random(13);
+  deallog.push("returns");
+  test_plane_strain_update(plane_strain_random);
+  deallog.pop();
 }

@@ -75,6 +75,35 @@ namespace bsmpm
     virtual ConstitutiveResponse
     update(ConstitutiveState &state) const = 0;
 
+    /**
+     * update() as the small-strain Newton system of a plane-strain point
+     * needs it (ConstitutiveUpdate::cell_system() and commit()): the same
+     * return and the same numbers, the stress as (xx, yy, zz, xy) in
+     * @p stress, and the algorithmic tangent in Voigt form (rows xx, yy,
+     * zz, xy; columns the same with the engineering shear, as
+     * ConstitutiveUpdate::voigt_tangent() makes it) in @p tangent, row by
+     * row, but only where the step yields: a step that does not yield has
+     * elastic_tangent(), which the caller takes once per cell, and
+     * @p tangent is left as it is. Returns whether the step yields. The
+     * state's xz and yz strains are zero (plane strain).
+     *
+     * Most points of a Newton system do not yield, and update() builds
+     * them the 36-entry rank-4 tangent all the same: the models override
+     * this with an elastic check that builds none. The default calls
+     * update().
+     */
+    virtual bool
+    plane_strain_update(ConstitutiveState      &state,
+                        std::array<double, 4>  &stress,
+                        std::array<double, 16> &tangent) const;
+
+    /** The stress of @p response as (xx, yy, zz, xy) and, if it yielded,
+     * its tangent in Voigt form (plane_strain_update()). */
+    static void
+    plane_strain_response(const ConstitutiveResponse &response,
+                          std::array<double, 4>      &stress,
+                          std::array<double, 16>     &tangent);
+
     /** Yield function: <= 0 for admissible stresses; -infinity for linear
      * elasticity. */
     virtual double
@@ -138,6 +167,21 @@ namespace bsmpm
     /** D^e : eps = K tr(eps) 1 + 2 mu dev(eps). */
     SymmetricTensor<2, 3>
     elastic_stress(const SymmetricTensor<2, 3> &elastic_strain) const;
+
+    /** elastic_stress() of a plane-strain elastic strain (xz = yz = 0) as
+     * (xx, yy, zz, xy), with the deviator @p e of it at hand: the same
+     * numbers as K tr(eps) 1 + 2 mu e. */
+    void
+    plane_strain_elastic_stress(const SymmetricTensor<2, 3> &eps,
+                                const SymmetricTensor<2, 3> &e,
+                                std::array<double, 4>       &stress) const
+    {
+      const double p = kappa * trace(eps);
+      stress[0]      = p + 2. * mu * e[0][0];
+      stress[1]      = p + 2. * mu * e[1][1];
+      stress[2]      = p + 2. * mu * e[2][2];
+      stress[3]      = 2. * mu * e[0][1];
+    }
 
     /** The three-dimensional isotropic stiffness K 1 (x) 1 + 2 mu I_d. */
     const SymmetricTensor<4, 3> &

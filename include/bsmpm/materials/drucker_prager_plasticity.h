@@ -42,6 +42,10 @@ namespace bsmpm
 
     ConstitutiveResponse
     update(ConstitutiveState &state) const override;
+    bool
+    plane_strain_update(ConstitutiveState      &state,
+                        std::array<double, 4>  &stress,
+                        std::array<double, 16> &tangent) const override;
     /** sqrt(J2) + eta p - xi c. */
     double
     yield_function(const SymmetricTensor<2, 3> &stress,

@@ -399,12 +399,16 @@ namespace bsmpm
     }
 
     /** The model's response to the strain increment @p de (xx, yy, zz,
-     * engineering xy) of the point with properties @p props; @p state
+     * engineering xy) of the point with properties @p props
+     * (ConstitutiveModel::plane_strain_update(): the stress, the Voigt
+     * tangent only if the point yields, which it returns); @p state
      * returns the updated state. */
-    ConstitutiveResponse
+    bool
     respond(const ArrayView<const double> &props,
             const Tensor<1, 4>            &de,
-            ConstitutiveState             &state) const;
+            ConstitutiveState             &state,
+            std::array<double, 4>         &stress,
+            std::array<double, 16>        &tangent) const;
 
     const ConstitutiveModel &model;
     const bool               b_bar;
