@@ -186,6 +186,20 @@ namespace bsmpm
     std::vector<types::global_dof_index> dof_indices(
       Q1CellKernel::dofs_per_cell);
     Q1CellKernel::LocalVector d, da{}, total;
+    // The grid's faces and the tolerance on them, read once: in the loop
+    // the compiler cannot keep them in registers across the writes to the
+    // points' properties (the same values and comparisons as
+    // BackgroundGrid::contains()).
+    const Point<2>     lower = grid.lower_left();
+    const Point<2>     upper = grid.upper_right();
+    const Tensor<1, 2> face_tolerance(
+      {1e-6 * grid.cell_size()[0], 1e-6 * grid.cell_size()[1]});
+    const auto in_grid = [&lower, &upper](const Point<2> &p) {
+      return p[0] >= lower[0] && p[0] <= upper[0] && p[1] >= lower[1] &&
+             p[1] <= upper[1];
+    };
+    const bool any_rigid_increments = !rigid_increments.empty();
+    const bool any_tracked          = !is_tracked.empty();
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned() ||
@@ -234,7 +248,7 @@ namespace bsmpm
             // A tracking point of a rigid body pushed along its normal (a
             // smooth footing) moves with the body, not with the soil that
             // slides along it (BoundaryCurve::rigid_support()).
-            if (!rigid_increments.empty() &&
+            if (any_rigid_increments &&
                 particle.get_properties()[Property::volume] == 0.)
               {
                 const unsigned int slot = tracked_slot(particle.get_id());
@@ -254,13 +268,11 @@ namespace bsmpm
             Point<2> x = particle.get_location() + du;
             for (unsigned int k = 0; k < 2; ++k)
               {
-                const double tolerance = 1e-6 * grid.cell_size()[k];
-                const double lower     = grid.lower_left()[k];
-                const double upper     = grid.upper_right()[k];
+                const double tolerance = face_tolerance[k];
                 const double face =
-                  x[k] < lower && x[k] >= lower - tolerance ? lower :
-                  x[k] > upper && x[k] <= upper + tolerance ? upper :
-                                                              x[k];
+                  x[k] < lower[k] && x[k] >= lower[k] - tolerance ? lower[k] :
+                  x[k] > upper[k] && x[k] <= upper[k] + tolerance ? upper[k] :
+                                                                    x[k];
                 if (face != x[k])
                   {
                     x[k]  = face;
@@ -304,7 +316,7 @@ namespace bsmpm
             if (finite && props[Property::volume] > 0)
               max_increment_square =
                 std::max(max_increment_square, du.norm_square());
-            if (!finite || !grid.contains(x))
+            if (!finite || !in_grid(x))
               {
                 ++report.n_left_grid;
                 if (!found_example)
@@ -317,7 +329,7 @@ namespace bsmpm
                 found_example = true;
               }
             particle.set_location(x);
-            if (!is_tracked.empty())
+            if (any_tracked)
               record_if_tracked(particle.get_id(), x, props);
           }
       }

@@ -401,6 +401,40 @@ main()
             << ", stationary to 1e-12: " << yes_no(max_stationary < 1e-12)
             << ", no sample closer: " << yes_no(max_worse <= 0) << std::endl;
 
+    // closest_point() skips the segments whose control boxes lie farther
+    // than a distance already reached: the answer must be, to the bit, that
+    // of searching every segment in order (the first of equally near ones),
+    // for points far off, near and on the curve, and on an open curve.
+    {
+      const BSplineCurve open(paper_points(), false);
+      unsigned int       n_checked = 0, n_different = 0;
+      for (const BSplineCurve *c : {&curve, &open})
+        for (unsigned int i = 0; i < 400; ++i)
+          {
+            const Point<2> p =
+              i % 4 == 0 ?
+                c->value(i / 400.) :
+              i % 4 == 1 ?
+                c->value(i / 400.) + 1e-3 * Tensor<1, 2>({uniform(generator),
+                                                          uniform(generator)}) :
+                center + Tensor<1, 2>({uniform(generator), uniform(generator)});
+            auto all = c->closest_point(p, 0);
+            for (unsigned int k = 1; k < c->n_segments(); ++k)
+              {
+                const auto ck = c->closest_point(p, k);
+                if (ck.distance < all.distance)
+                  all = ck;
+              }
+            const auto found = c->closest_point(p);
+            n_different += found.u != all.u || found.point != all.point ||
+                           found.distance != all.distance;
+            ++n_checked;
+          }
+      deallog << "skipping far segments, " << n_checked
+              << " points: answers differing from the full search "
+              << n_different << std::endl;
+    }
+
     // Beyond the ends of an open straight chain: the ends.
     const BSplineCurve line({Point<2>(0, 0), Point<2>(1, 0), Point<2>(2, 0)},
                             false);
