@@ -42,17 +42,9 @@ namespace bsmpm
     // footing's Newton system; the values are the same.
     for (unsigned int c = 0; c < 6; ++c)
       for (unsigned int d = 0; d < 6; ++d)
-        {
-          // I_d: delta_cd - 1/3 between normal components, delta_cd / 2
-          // between shear components (1/2 (d_ik d_jl + d_il d_jk) - d_ij
-          // d_kl / 3).
-          const double deviatoric = c < 3 && d < 3 ?
-                                      (c == d ? 2. / 3. : -1. / 3.) :
-                                    c == d ? 0.5 :
-                                             0.;
-          t.access_raw_entry(6 * c + d) +=
-            a * deviatoric + b * n.access_raw_entry(c) * n.access_raw_entry(d);
-        }
+        t.access_raw_entry(6 * c + d) +=
+          a * deviatoric_projector(c, d) +
+          b * n.access_raw_entry(c) * n.access_raw_entry(d);
   }
 
 

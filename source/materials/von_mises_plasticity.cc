@@ -152,24 +152,17 @@ namespace bsmpm
                                 deviator(state.elastic_strain),
                                 stress);
     // The (xx, yy, zz, xy) block of isotropic_stiffness() plus
-    // add_deviatoric_terms(): a I_d is (delta_rc - 1/3) a between normal
-    // components and a / 2 on the shear diagonal; n (x) n takes n's stored
-    // entries.
+    // add_deviatoric_terms() (the first four of deal.II's stored pairs);
+    // n (x) n takes n's stored entries.
     const double beta = 1. - 3. * mu * dgamma / q_tr;
     const double a    = 2. * mu * (beta - 1.);
     const double b    = 6. * mu * mu * (dgamma / q_tr - 1. / (3. * mu + H));
     const double n_voigt[4] = {n[0][0], n[1][1], n[2][2], n[0][1]};
     for (unsigned int r = 0; r < 4; ++r)
       for (unsigned int c = 0; c < 4; ++c)
-        {
-          const double deviatoric = r < 3 && c < 3 ?
-                                      (r == c ? 2. / 3. : -1. / 3.) :
-                                    r == c ? 0.5 :
-                                             0.;
-          tangent[4 * r + c] =
-            isotropic_stiffness().access_raw_entry(6 * r + c) +
-            (a * deviatoric + b * n_voigt[r] * n_voigt[c]);
-        }
+        tangent[4 * r + c] =
+          isotropic_stiffness().access_raw_entry(6 * r + c) +
+          (a * deviatoric_projector(r, c) + b * n_voigt[r] * n_voigt[c]);
     return true;
   }
 

@@ -245,6 +245,17 @@ namespace bsmpm
 
 
 
+  double
+  ConstitutiveUpdate::integration_weight(
+    const ArrayView<const double> &props) const
+  {
+    return props[Property::volume] == 0. ? 0. :
+           quadrature_weights            ? props[Property::weight] :
+                                           props[Property::volume];
+  }
+
+
+
   Tensor<2, 4>
   ConstitutiveUpdate::voigt_tangent(const SymmetricTensor<4, 3> &tangent)
   {
@@ -732,9 +743,8 @@ namespace bsmpm
     for (const auto &point : cell_points)
       {
         const auto  &props = point.props;
-        const double w     = quadrature_weights ? props[Property::weight] :
-                                                  props[Property::volume];
-        if (props[Property::volume] == 0. || w == 0.)
+        const double w     = integration_weight(props);
+        if (w == 0.)
           continue;
         if (small)
           {
@@ -762,9 +772,8 @@ namespace bsmpm
       for (const auto &point : cell_points)
         {
           const auto  &props = point.props;
-          const double w     = quadrature_weights ? props[Property::weight] :
-                                                    props[Property::volume];
-          if (props[Property::volume] == 0. || w == 0.)
+          const double w     = integration_weight(props);
+          if (w == 0.)
             continue;
           W += w;
         }
@@ -775,9 +784,8 @@ namespace bsmpm
       for (const auto &point : cell_points)
         {
           const auto  &props = point.props;
-          const double w     = quadrature_weights ? props[Property::weight] :
-                                                    props[Property::volume];
-          if (props[Property::volume] == 0. || w == 0.)
+          const double w     = integration_weight(props);
+          if (w == 0.)
             continue;
           if (mean.empty())
             mean.assign(props.size(), 0.);

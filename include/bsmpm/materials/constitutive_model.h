@@ -190,6 +190,16 @@ namespace bsmpm
       return stiffness_3d;
     }
 
+    /** The entry of the deviatoric projector I_d = 1/2 (d_ik d_jl + d_il
+     * d_jk) - d_ij d_kl / 3 between deal.II's stored pairs @p r and @p c of
+     * a symmetric 3x3 tensor, (00, 11, 22, 01, 02, 12): delta_rc - 1/3
+     * between normal components, delta_rc / 2 between shear components. */
+    static double
+    deviatoric_projector(const unsigned int r, const unsigned int c)
+    {
+      return r < 3 && c < 3 ? (r == c ? 2. / 3. : -1. / 3.) : r == c ? 0.5 : 0.;
+    }
+
     /** t += a I_d + b n (x) n, written entry by entry (deal.II's
      * outer_product of symmetric tensors is slow). */
     static void

@@ -410,6 +410,12 @@ namespace bsmpm
             std::array<double, 4>         &stress,
             std::array<double, 16>        &tangent) const;
 
+    /** The weight a point of @p props integrates with: its fitted weight
+     * with the cut-cell quadrature, else its volume; zero for a point that
+     * holds no material (no volume), which the sums skip. */
+    double
+    integration_weight(const ArrayView<const double> &props) const;
+
     const ConstitutiveModel &model;
     const bool               b_bar;
     const Kinematics         point_kinematics;
