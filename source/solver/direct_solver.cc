@@ -1,6 +1,8 @@
 #include <deal.II/base/mpi.h>
 
 #include <bsmpm/solver/direct_solver.h>
+#include <bsmpm/solver/mumps_factorization.h>
+#include <bsmpm/solver/subdomain_mumps.h>
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
@@ -8,7 +10,6 @@
 #include <Epetra_Map.h>
 #include <Epetra_MpiComm.h>
 #include <Epetra_Vector.h>
-#include <dmumps_c.h>
 
 #include <algorithm>
 #include <chrono>
@@ -114,36 +115,6 @@ namespace bsmpm
       return true;
     }
 #endif
-
-
-
-    /** What MUMPS' INFOG(1) < 0 means for the caller (MUMPS users' guide,
-     * "Error diagnostics"); -1 where more workspace may help. */
-    int
-    mumps_error_class(const int infog1)
-    {
-      switch (infog1)
-        {
-          case -8:
-          case -9:
-          case -11:
-          case -14:
-          case -15:
-          case -17:
-          case -20:
-            return -1; // the workspace was too small
-          case -5:
-          case -7:
-          case -13:
-          case -19:
-            return static_cast<int>(DirectSolver::Status::out_of_memory);
-          case -6:
-          case -10:
-            return static_cast<int>(DirectSolver::Status::singular);
-          default:
-            return static_cast<int>(DirectSolver::Status::other);
-        }
-    }
   } // namespace
 
 
@@ -186,15 +157,6 @@ namespace bsmpm
                dealii::ExcInternalError());
     }
 
-    ~HostMumps()
-    {
-      if (initialised)
-        {
-          mumps.job = -2;
-          dmumps_c(&mumps);
-        }
-    }
-
     /** Analysis and factorisation of @p matrix. */
     Status
     factorize(const Epetra_CrsMatrix &matrix)
@@ -203,66 +165,16 @@ namespace bsmpm
       if (dealii::Utilities::MPI::min(gather(matrix, true) ? 1 : 0,
                                       communicator) == 0)
         return Status::other;
-      int status = 0;
+      Status status = Status::success;
       if (on_host)
         {
-          mumps.comm_fortran = MPI_Comm_c2f(MPI_COMM_SELF);
-          mumps.par          = 1;
-          mumps.sym          = symmetric ? 2 : 0;
-          mumps.job          = -1;
-          dmumps_c(&mumps);
-          initialised = mumps.infog[0] >= 0;
-          if (!initialised)
-            status = static_cast<int>(Status::other);
-          else
-            {
-              // Those Amesos_Mumps::SetICNTLandCNTL() sets for one process:
-              // silent, automatic permutation, ordering and scaling, no
-              // iterative refinement, the matrix centralised on the host.
-              // Pairs of ICNTL(k) and its value.
-              static constexpr int controls[][2] = {{1, -1},
-                                                    {2, -1},
-                                                    {3, -1},
-                                                    {4, -1},
-                                                    {5, 0},
-                                                    {6, 7},
-                                                    {7, 7},
-                                                    {8, 7},
-                                                    {9, 1},
-                                                    {10, 0},
-                                                    {11, 0},
-                                                    {12, 0},
-                                                    {13, 0},
-                                                    {15, 0},
-                                                    {16, 0},
-                                                    {18, 0}};
-              for (const auto &control : controls)
-                mumps.icntl[control[0] - 1] = control[1];
-              // L D L^T with pivoting does not stop at a zero pivot as the
-              // LU does (INFOG(1) = -10): it reports the null pivots it
-              // met (ICNTL(24) = 1, INFOG(28)), which numeric_factorization()
-              // calls singular.
-              if (symmetric)
-                mumps.icntl[24 - 1] = 1;
-              mumps.n   = matrix.NumGlobalRows();
-              mumps.nnz = values.size();
-              mumps.nz  = values.size();
-              mumps.irn = rows.data();
-              mumps.jcn = columns.data();
-              mumps.a   = values.data();
-              mumps.job = 1;
-              dmumps_c(&mumps);
-              if (mumps.infog[0] < 0)
-                {
-                  // More workspace is no remedy in the analysis.
-                  const int error = mumps_error_class(mumps.infog[0]);
-                  status = error >= 0 ? error : static_cast<int>(Status::other);
-                }
-              if (status == 0)
-                status = numeric_factorization();
-            }
+          mumps  = std::make_unique<MumpsFactorization>(symmetric);
+          status = mumps->analyse(matrix.NumGlobalRows(), rows, columns);
+          if (status == Status::success)
+            status = mumps->factorize(values);
         }
-      return static_cast<Status>(broadcast_from_host(communicator, status));
+      return static_cast<Status>(
+        broadcast_from_host(communicator, static_cast<int>(status)));
     }
 
     /** The factorisation of @p matrix, of the structure factorize() saw,
@@ -271,11 +183,12 @@ namespace bsmpm
     refactorize(const Epetra_CrsMatrix &matrix)
     {
       const bool same = gather(matrix, false);
-      int        status =
+      Status     status =
         dealii::Utilities::MPI::min(same ? 1 : 0, communicator) == 1 ?
-                 (on_host ? numeric_factorization() : 0) :
-                 static_cast<int>(Status::other);
-      return static_cast<Status>(broadcast_from_host(communicator, status));
+              (on_host ? mumps->factorize(values) : Status::success) :
+              Status::other;
+      return static_cast<Status>(
+        broadcast_from_host(communicator, static_cast<int>(status)));
     }
 
     bool
@@ -285,26 +198,14 @@ namespace bsmpm
         {
           // One process: MUMPS overwrites the right-hand side with the
           // solution.
-          x          = b;
-          mumps.rhs  = x[0];
-          mumps.nrhs = 1;
-          mumps.lrhs = x.MyLength();
-          mumps.job  = 3;
-          dmumps_c(&mumps);
-          return mumps.infog[0] >= 0;
+          x = b;
+          return mumps->solve(x[0]);
         }
       Epetra_Vector gathered(*all_rows);
       gathered.Import(b, *import, Insert);
       int error = 0;
       if (on_host && gathered.MyLength() > 0)
-        {
-          mumps.rhs  = gathered.Values();
-          mumps.nrhs = 1;
-          mumps.lrhs = gathered.MyLength();
-          mumps.job  = 3;
-          dmumps_c(&mumps);
-          error = mumps.infog[0] < 0 ? 1 : 0;
-        }
+        error = mumps->solve(gathered.Values()) ? 0 : 1;
       error = broadcast_from_host(communicator, error);
       if (error == 0)
         x.Export(gathered, *import, Insert);
@@ -391,27 +292,6 @@ namespace bsmpm
       return entry == kept.size() && values.size() == rows.size();
     }
 
-    /** MUMPS' factorisation (JOB = 2) of the values, with more workspace
-     * where the pivoting needs it; a Status on the host. */
-    int
-    numeric_factorization()
-    {
-      mumps.a = values.data();
-      for (const int workspace : {20, 100, 400, 1600})
-        {
-          mumps.icntl[14 - 1] = workspace;
-          mumps.job           = 2;
-          dmumps_c(&mumps);
-          if (mumps.infog[0] >= 0)
-            return static_cast<int>(mumps.infog[28 - 1] > 0 ? Status::singular :
-                                                              Status::success);
-          const int error = mumps_error_class(mumps.infog[0]);
-          if (error >= 0)
-            return error;
-        }
-      return static_cast<int>(Status::out_of_memory);
-    }
-
     const MPI_Comm communicator;
     const bool     on_host;
     const bool     symmetric;
@@ -420,9 +300,8 @@ namespace bsmpm
     std::unique_ptr<Epetra_Map>    all_rows;
     std::unique_ptr<Epetra_Import> import;
     /** The matrix gathered on process 0 (no rows elsewhere). */
-    std::unique_ptr<Epetra_CrsMatrix> all;
-    DMUMPS_STRUC_C                    mumps{};
-    bool                              initialised = false;
+    std::unique_ptr<Epetra_CrsMatrix>   all;
+    std::unique_ptr<MumpsFactorization> mumps;
     /** Whether each entry of the host's rows goes to MUMPS. */
     std::vector<bool>   kept;
     std::vector<int>    rows, columns;
@@ -444,8 +323,21 @@ namespace bsmpm
   {
     solver.reset();
     mumps.reset();
+    subdomains.reset();
     if (name == "MUMPS")
       {
+        if (matrix.Comm().NumProc() > 1)
+          {
+            // Each process its own unknowns, the seams together; where
+            // that fails (a seam too long for a dense Schur complement,
+            // a process' interior singular on its own), the matrix
+            // gathered on process 0.
+            subdomains = std::make_unique<SubdomainMumps>(matrix, symmetric);
+            const Status status = subdomains->factorize(matrix);
+            if (status == Status::success)
+              return status;
+            subdomains.reset();
+          }
         mumps = std::make_unique<HostMumps>(matrix, symmetric);
         return mumps->factorize(matrix);
       }
@@ -477,6 +369,8 @@ namespace bsmpm
   DirectSolver::Status
   DirectSolver::refactorize(const Epetra_CrsMatrix &matrix)
   {
+    if (subdomains)
+      return subdomains->refactorize(matrix);
     if (mumps)
       return mumps->refactorize(matrix);
     if (!solver || matrix.NumMyRows() != matrix_copy->NumMyRows())
@@ -504,6 +398,8 @@ namespace bsmpm
   DirectSolver::solve(TrilinosWrappers::MPI::Vector       &x,
                       const TrilinosWrappers::MPI::Vector &b)
   {
+    if (subdomains)
+      return subdomains->solve(x.trilinos_vector(), b.trilinos_vector());
     if (mumps)
       return mumps->solve(x.trilinos_vector(), b.trilinos_vector());
     problem.SetLHS(&x.trilinos_vector());

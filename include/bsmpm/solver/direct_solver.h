@@ -13,6 +13,11 @@ class Amesos_BaseSolver;
 
 namespace bsmpm
 {
+  class SubdomainMumps;
+}
+
+namespace bsmpm
+{
   using namespace dealii;
 
   /**
@@ -40,12 +45,14 @@ namespace bsmpm
    * order their messages arrive, and it chooses helpers for large fronts
    * by their load): two identical runs of the deep penetration at np = 2
    * parted at 5e-15 .. 3e-13 within the first 4 steps (doc/contact.md),
-   * enough to flip any decision that sits on a threshold. So a matrix of
-   * several processes is gathered on process 0 and factorised there by
-   * MUMPS alone (on MPI_COMM_SELF): one run gives the same bits as the
-   * next. (Debian's Amesos cannot give MUMPS fewer processes than the
-   * matrix has: it lacks MPI_Comm_c2f.) KLU gathers the matrix on process
-   * 0 itself.
+   * enough to flip any decision that sits on a threshold. So MUMPS always
+   * runs on one process (MPI_COMM_SELF): on several processes each
+   * factorises its own unknowns and process 0 the seams between them
+   * (SubdomainMumps), which gives the same bits in every run; where that
+   * cannot be had (a seam too long for its dense Schur complement) the
+   * matrix is gathered on process 0 and factorised there. (Debian's Amesos
+   * cannot give MUMPS fewer processes than the matrix has: it lacks
+   * MPI_Comm_c2f.) KLU gathers the matrix on process 0 itself.
    */
   class DirectSolver
   {
@@ -89,6 +96,7 @@ namespace bsmpm
     class HostMumps;
 
     std::unique_ptr<HostMumps>         mumps;
+    std::unique_ptr<SubdomainMumps>    subdomains;
     std::unique_ptr<Epetra_CrsMatrix>  matrix_copy;
     Epetra_LinearProblem               problem;
     std::unique_ptr<Amesos_BaseSolver> solver;
