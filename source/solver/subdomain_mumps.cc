@@ -249,6 +249,10 @@ namespace bsmpm
               columns.push_back(j + 1);
             }
         interface = std::make_unique<MumpsFactorization>(symmetric);
+        // Round-off of the summed S: 1e-14 of its largest entry told the
+        // pure Neumann problem; a thin IBM band (delta / h = 1e-6) leaves
+        // pivots of about 1e-7 of it.
+        interface->set_null_pivot_threshold(1e-11);
         status =
           static_cast<int>(interface->analyse(n_interface, rows, columns));
       }

@@ -91,6 +91,14 @@ namespace bsmpm
     solve(TrilinosWrappers::MPI::Vector       &x,
           const TrilinosWrappers::MPI::Vector &b);
 
+    /** Whether the last factorize() split the matrix into the processes'
+     * subdomains (SubdomainMumps) rather than gathering it on process 0. */
+    bool
+    on_subdomains() const
+    {
+      return subdomains != nullptr;
+    }
+
   private:
     /** MUMPS on process 0 alone. */
     class HostMumps;

@@ -45,6 +45,19 @@ namespace bsmpm
             const std::vector<int> &columns,
             const int               schur_size = 0);
 
+    /** Pivots below @p relative times the matrix's largest entry count as
+     * null (ICNTL(24) = 1, CNTL(3) < 0), and the matrix as singular.
+     * MUMPS' own threshold tells the exact null pivots of a sparse
+     * factorisation, not those of a dense Schur complement summed from
+     * pieces: the pure Neumann Laplacian's S at np = 2 left a pivot above
+     * it (tests/solver/direct_solver). */
+    void
+    set_null_pivot_threshold(const double relative)
+    {
+      mumps.icntl[24 - 1] = 1;
+      mumps.cntl[3 - 1]   = -relative;
+    }
+
     /** The numeric factorisation of @p values (in the order of the
      * analysed triplets; kept, MUMPS reads them in place), with more
      * workspace where the pivoting needs it. */
