@@ -57,6 +57,7 @@ namespace bsmpm
     // must be in its own pattern. The neighbours of the weak cells too, so
     // that a boundary that moves by less than a cell per step needs no
     // new matrix.
+    ++matrix_layouts;
     const BackgroundGrid  &grid = parts.grid;
     const MPI_Comm         comm = grid.mpi_communicator();
     DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
@@ -507,8 +508,20 @@ namespace bsmpm
   {
     TimerOutput::Scope    t(timer, "newton system");
     const BackgroundGrid &grid = parts.grid;
+    // copy_from() keeps the matrix object while the pattern stays. Where it
+    // does not, deal.II 9.4's copy_from() decides so row by row on each
+    // process and rebuilds the matrix there alone (FillComplete(), a
+    // collective): a new layout on some processes only (the ghost
+    // penalty's faces moved on one, the global count of entries the same)
+    // left the others in the next collective, and the footing at h = 1/64
+    // on two processes stopped with MPI_ERR_TRUNCATE in step 13. A new
+    // layout is taken on every process first.
+    if (tangent_layout != matrix_layouts)
+      {
+        tangent_matrix.reinit(system_matrix);
+        tangent_layout = matrix_layouts;
+      }
     tangent_matrix.copy_from(system_matrix);
-    // copy_from() keeps the matrix object while the pattern stays.
     if (!tangent_scatter.serves(tangent_matrix))
       tangent_scatter.reinit(tangent_matrix,
                              grid.triangulation().n_active_cells());

@@ -311,15 +311,19 @@ namespace bsmpm
     CellScatter                    scatter;
     TrilinosWrappers::SparseMatrix boundary_fit_matrix;
     TrilinosWrappers::SparseMatrix tangent_matrix;
-    TrilinosWrappers::MPI::Vector  newton_residual;
-    unsigned long long             yielding                    = 0;
-    bool                           material_from_points        = false;
-    bool                           pointless_cells_from_points = false;
-    const MaterialPoints          *material_points             = nullptr;
-    bool                           finite_strain               = false;
-    CurveContact                  *contact                     = nullptr;
-    bool                           contact_symmetric           = true;
-    double                         internal_force_norm         = 0;
+    /** How many times make_matrix() has built system_matrix's layout, and
+     * which of them tangent_matrix has (see newton_system()). */
+    unsigned int                  matrix_layouts = 0;
+    unsigned int                  tangent_layout = 0;
+    TrilinosWrappers::MPI::Vector newton_residual;
+    unsigned long long            yielding                    = 0;
+    bool                          material_from_points        = false;
+    bool                          pointless_cells_from_points = false;
+    const MaterialPoints         *material_points             = nullptr;
+    bool                          finite_strain               = false;
+    CurveContact                 *contact                     = nullptr;
+    bool                          contact_symmetric           = true;
+    double                        internal_force_norm         = 0;
     /** The implicit boundary's band by cell, for the tangent of nonlinear
      * materials (ConstitutiveUpdate::cell_system()). */
     ConstitutiveUpdate::SupportBands support_bands;
