@@ -212,6 +212,17 @@ namespace bsmpm
       return error == 0;
     }
 
+#ifdef DEBUG
+    /** The symmetry check of a factorisation (in gather()) on @p matrix
+     * gathered on process 0, for a matrix that the subdomains factorise:
+     * each of them reads one triangle of its part only. */
+    void
+    check_symmetric(const Epetra_CrsMatrix &matrix)
+    {
+      gather(matrix, true);
+    }
+#endif
+
   private:
     /** The triplets (1-based) of @p matrix on process 0, of its lower
      * triangle if symmetric; with @p structure the rows and columns are
@@ -332,6 +343,10 @@ namespace bsmpm
             // that fails (a seam too long for a dense Schur complement,
             // a process' interior singular on its own), the matrix
             // gathered on process 0.
+#ifdef DEBUG
+            if (symmetric)
+              HostMumps(matrix, symmetric).check_symmetric(matrix);
+#endif
             subdomains = std::make_unique<SubdomainMumps>(matrix, symmetric);
             const Status status = subdomains->factorize(matrix);
             if (status == Status::success)
