@@ -348,25 +348,24 @@ namespace bsmpm
 
     if (this_process == 0 && interface)
       {
-        // S = sum_p S_p, in the order of the processes.
-        interface_values.assign(static_cast<std::size_t>(n_interface) *
-                                  n_interface,
-                                0.);
+        // S = sum_p S_p, in the order of the processes, straight into the
+        // entries of S's triplets (by rows; the lower triangle if
+        // symmetric, as analysed in factorize()).
+        const auto entry = [&](const std::size_t i, const std::size_t j) {
+          return symmetric ? i * (i + 1) / 2 + j : i * n_interface + j;
+        };
+        interface_entries.assign(entry(n_interface - 1, n_interface - 1) + 1,
+                                 0.);
         std::size_t offset = 0;
         for (const auto &t : touched_by_process)
           {
             const std::size_t m = t.size();
             for (std::size_t a = 0; a < m; ++a)
               for (std::size_t b = 0; b < (symmetric ? a + 1 : m); ++b)
-                interface_values[std::size_t(t[a]) * n_interface + t[b]] +=
+                interface_entries[entry(t[a], t[b])] +=
                   parts[offset + a * m + b];
             offset += m * m;
           }
-        interface_entries.clear();
-        for (int i = 0; i < n_interface; ++i)
-          for (int j = 0; j < (symmetric ? i + 1 : n_interface); ++j)
-            interface_entries.push_back(
-              interface_values[std::size_t(i) * n_interface + j]);
         status = static_cast<int>(interface->factorize(interface_entries));
       }
     return static_cast<DirectSolver::Status>(

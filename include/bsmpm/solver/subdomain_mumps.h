@@ -70,13 +70,6 @@ namespace bsmpm
     bool
     solve(Epetra_MultiVector &x, const Epetra_MultiVector &b);
 
-    /** The number of interface unknowns (after factorize()). */
-    int
-    interface_size() const
-    {
-      return n_interface;
-    }
-
   private:
     /** The values of @p matrix for the local factorisation (own entries
      * and those other processes send), in the order of the triplets. */
@@ -120,7 +113,7 @@ namespace bsmpm
     /** On process 0: every process' touched interface numbers, the sum S
      * (dense, by rows) and its factorisation. */
     std::vector<std::vector<int>>       touched_by_process;
-    std::vector<double>                 interface_values, interface_entries;
+    std::vector<double>                 interface_entries;
     std::unique_ptr<MumpsFactorization> interface;
 
     /** The local right-hand side and solution (interior, then touched
