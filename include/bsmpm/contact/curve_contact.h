@@ -236,13 +236,31 @@ namespace bsmpm
      * increment's start. */
     struct ContactPiece
     {
-      unsigned int                body;
-      unsigned int                curve;
-      std::array<unsigned int, 2> cell;
+      static ContactPiece
+      make(const unsigned int                 body,
+           const unsigned int                 curve,
+           const std::array<unsigned int, 2> &cell,
+           const unsigned int                 feature,
+           const double                       u_begin,
+           const double                       u_end)
+      {
+        ContactPiece piece;
+        piece.body    = body;
+        piece.curve   = curve;
+        piece.cell    = cell;
+        piece.feature = feature;
+        piece.u_begin = u_begin;
+        piece.u_end   = u_end;
+        return piece;
+      }
+
+      unsigned int                body  = 0;
+      unsigned int                curve = 0;
+      std::array<unsigned int, 2> cell  = {{0, 0}};
       /** The part of the rigid outline it faces (SurfacePoint::feature). */
-      unsigned int          feature;
-      double                u_begin;
-      double                u_end;
+      unsigned int          feature = 0;
+      double                u_begin = 0;
+      double                u_end   = 0;
       std::vector<Point<2>> positions;
       std::vector<double>   weights; ///< ds
       /** The part of the outline each Gauss point measures its gap to:
@@ -259,13 +277,37 @@ namespace bsmpm
       /** The augmented Lagrangian's multiplier of the piece:
        * p = max(0, lambda - eps g). */
       double multiplier_pressure = 0;
+      /** 'Contact/Pressure = at grid lines': the piece runs from one
+       * crossing of the curve with a grid line (or end of a free stretch)
+       * to the next, the gap is taken at the two crossings and linear
+       * between them (in the curve's parameter; phi: the weight of the
+       * second crossing at each Gauss point), and the pressure
+       * max(0, lambda - eps g) at each Gauss point of that gap. u_begin
+       * and u_end are the crossings' parameters (u_end > 1 where a closed
+       * curve's piece runs past its start). */
+      bool                        between_crossings = false;
+      std::array<Point<2>, 2>     ends;
+      std::array<unsigned int, 2> end_features = {{0, 0}};
+      /** The crossings' parameters, which the pieces on either side of
+       * one share (the multipliers' keys). */
+      std::array<double, 2>       end_keys        = {{0, 0}};
+      std::array<double, 2>       end_multipliers = {{0, 0}};
+      std::array<Tensor<1, 2>, 2> end_previous;
+      std::vector<double>         phi;
     };
+
+    /** The pieces of the curves' free stretches from crossing to crossing
+     * with the grid lines, for begin_increment(). */
+    void
+    collect_crossings(const BoundaryCurves &curves, const BackgroundGrid &grid);
 
     /** What contact does on a piece for a displacement increment. */
     struct PieceState
     {
       bool active  = false;
       bool sliding = false;
+      /** Of the part that touches, the length that slides. */
+      double sliding_length = 0;
       /** Minus the mean penetration where the piece touches. */
       double       gap            = 0;
       double       contact_length = 0; ///< of the part that touches
@@ -283,6 +325,12 @@ namespace bsmpm
        * derivative. */
       Vector<double>     force;
       FullMatrix<double> stiffness;
+      /** Between crossings: at each crossing, the integral of the
+       * pressure times the crossing's weight phi along the piece, that of
+       * phi, and the traction there (their lumped projection). */
+      std::array<double, 2>       end_pressures = {{0, 0}};
+      std::array<double, 2>       end_weights   = {{0, 0}};
+      std::array<Tensor<1, 2>, 2> end_tractions;
     };
 
     /** What contact does on @p piece at the nodal increment @p d of its
@@ -294,6 +342,14 @@ namespace bsmpm
              const Q1CellKernel              &kernel,
              const Q1CellKernel::LocalVector &d,
              const Tensor<1, 2> &body_shift = Tensor<1, 2>()) const;
+
+    /** evaluate() for a piece between crossings. */
+    PieceState
+    evaluate_between_crossings(const ContactPiece              &piece,
+                               const BackgroundGrid            &grid,
+                               const Q1CellKernel              &kernel,
+                               const Q1CellKernel::LocalVector &d,
+                               const Tensor<1, 2> &body_shift) const;
 
     /** Adds to @p state the force and stiffness of the penalty on the
      * tilt of the gap along the piece's touching part (Contact/Tilt
@@ -331,6 +387,9 @@ namespace bsmpm
     std::vector<RigidBody> bodies;
     RigidBodyMotion        body_motion;
     double                 gamma = 10;
+    /** 'Contact/Pressure': one pressure per crossing of a curve with a
+     * grid line (true) or per piece of curve in a cell. */
+    bool pressure_at_crossings = true;
     /** The tilt's penalty as a factor of the mean gap's. */
     double gamma_tilt    = 0;
     double tilt_penalty  = 0;
