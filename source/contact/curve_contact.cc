@@ -711,6 +711,27 @@ namespace bsmpm
               sign * body.friction_coefficient() * penalty / L * T[i] * G[j] :
               penalty / L * T[i] * T[j];
       }
+    // Where the outline turns, t_q turns with n_q (dn/dx = t t^T / rho,
+    // dt/dx = -n t^T / rho): T_i and, while sticking, the trial traction
+    // (the mean of (t_previous - eps (u - u_rigid)) . t) feel it.
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const double rho = surface[q].turning_radius;
+        if (!piece.touching[q] || !std::isfinite(rho) || !(rho > 0))
+          continue;
+        const Tensor<1, 2> &nq = surface[q].normal;
+        const Tensor<1, 2>  tq({-nq[1], nq[0]});
+        const double        w = piece.weights[q] / rho;
+        const double        c =
+          state.sliding ?
+                   0. :
+                   (piece.previous[q] * nq - penalty * ((u[q] - rigid) * nq)) / L;
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            state.stiffness(i, j) +=
+              w * (c * T[i] + state.tangential * (nq * N[q][i])) *
+              (tq * N[q][j]);
+      }
     for (unsigned int q = 0; q < n_q; ++q)
       if (piece.touching[q])
         {
@@ -830,6 +851,22 @@ namespace bsmpm
                     w * sign * body.friction_coefficient() * penalty * T[i] *
                       G[j] :
                     w * penalty * T[i] * T[j];
+            // Where the outline turns, the tangent t turns with n:
+            // dn/dx = t t^T / rho and dt/dx = -n t^T / rho, which the force
+            // t_T t . N_i and, while sticking, the trial traction
+            // (t_previous - eps (u - u_rigid)) . t feel.
+            const double rho = surface.turning_radius;
+            if (std::isfinite(rho) && rho > 0)
+              {
+                const double trial_turning =
+                  sliding ?
+                    0. :
+                    piece.previous[q] * nq - penalty * ((u - rigid) * nq);
+                for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int j = 0; j < n; ++j)
+                    state.stiffness(i, j) +=
+                      w / rho * (trial_turning * T[i] + traction * G[i]) * T[j];
+              }
           }
         for (unsigned int i = 0; i < n; ++i)
           {
