@@ -270,9 +270,9 @@ namespace bsmpm
                                   const BackgroundGrid &grid)
   {
     // A piece runs from one point where a free stretch of curve passes
-    // from one cell to the next (or ends) to the next such point: the gap
-    // is taken at these crossings and interpolated linearly between them,
-    // so the pressure is continuous along the curve and the gap is held
+    // from one cell to the next (or ends) to the next such point: the
+    // curve's displacement is taken at these crossings and interpolated
+    // linearly between them, with the multipliers, so the gap is held
     // where the bilinear displacement has its values on the curve. One
     // pressure per cell held only the mean gap per cell and left the
     // crossings free to move in and out in turn (doc/contact.md,
