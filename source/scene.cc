@@ -6,8 +6,12 @@
 #include <bsmpm/strength_reduction.h>
 #include <bsmpm/verification/error_measures.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace bsmpm
 {
@@ -287,11 +291,6 @@ namespace bsmpm
                                       finite_strain()),
                                    boundary_curves.prescribe_displacement() ||
                                      contact.moves_bodies_with_load());
-    // The friction history lives in memory only.
-    AssertThrow(!(contact.enabled() && checkpoint.resuming()),
-                ExcMessage("A run with rigid bodies cannot be resumed from a "
-                           "checkpoint yet: the contact's friction history "
-                           "is not in it."));
   }
 
 
@@ -490,6 +489,25 @@ namespace bsmpm
                         "checkpoint, or run with 'Boundary curves/Point "
                         "spacing/Adapt = false'."));
         assembly->restore_matrix(weak_cells);
+        // Checkpoints of earlier versions have no such state: resumed,
+        // their next step starts from zero; with rigid bodies they are
+        // refused (the friction history is not in them).
+        const std::string state = checkpoint.read_scene_state();
+        AssertThrow(!state.empty() || !contact.enabled(),
+                    ExcMessage("This checkpoint has no contact state "
+                               "(written by a version of bsmpm that did "
+                               "not keep it): a run with rigid bodies "
+                               "cannot resume from it."));
+        if (!state.empty())
+          {
+            std::istringstream              in(state);
+            boost::archive::binary_iarchive archive(in);
+            IncrementSolver::Memory         memory;
+            archive >> memory >> collapse_detector;
+            increment_solver->restore(memory);
+            if (contact.enabled())
+              archive >> contact;
+          }
       }
     if (pcout.is_active())
       for (const auto &record : run_summary.steps)
@@ -876,11 +894,22 @@ namespace bsmpm
     RunSummary so_far = run_summary;
     so_far.add_timing(timer, total_timer.wall_time());
     TimerOutput::Scope t(timer, "checkpoint");
+    // Where the next step's Newton iterations start, and the contact's
+    // state (the same on every process).
+    std::ostringstream scene_state;
+    {
+      const IncrementSolver::Memory   memory = increment_solver->memory();
+      boost::archive::binary_oarchive archive(scene_state);
+      archive << memory << collapse_detector;
+      if (contact.enabled())
+        archive << contact;
+    }
     checkpoint.write(step,
                      grid,
                      points,
                      so_far,
                      output,
-                     assembly->weak_cells_of_last_matrix());
+                     assembly->weak_cells_of_last_matrix(),
+                     scene_state.str());
   }
 } // namespace bsmpm

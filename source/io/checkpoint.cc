@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace boost
@@ -182,7 +183,8 @@ namespace bsmpm
                     MaterialPoints            &points,
                     const RunSummary          &summary,
                     const OutputWriter        &output,
-                    const std::vector<CellId> &weak_cells)
+                    const std::vector<CellId> &weak_cells,
+                    const std::string         &scene_state)
   {
     const bool     root = Utilities::MPI::this_mpi_process(communicator) == 0;
     const fs::path target =
@@ -237,6 +239,8 @@ namespace bsmpm
           archive << header << summary << output << all_weak_cells;
         });
         write("parameters.prm", [&](std::ostream &out) { out << parameters; });
+        if (!scene_state.empty())
+          write("scene", [&](std::ostream &out) { out << scene_state; });
 
         // Keep only the one before, then publish the new one: removing
         // the older ones first means a run killed at any moment leaves at
@@ -388,5 +392,16 @@ namespace bsmpm
     const Header header = read_header(archive, resume_directory);
     archive >> summary >> output >> weak_cells;
     return header.step;
+  }
+
+
+  std::string
+  Checkpoint::read_scene_state() const
+  {
+    std::ifstream in(resume_directory + "/scene", std::ios::binary);
+    if (!in)
+      return std::string();
+    return std::string(std::istreambuf_iterator<char>(in),
+                       std::istreambuf_iterator<char>());
   }
 } // namespace bsmpm

@@ -410,4 +410,59 @@ namespace bsmpm
     previous_increment = increment;
     previous_delta     = delta;
   }
+
+
+  IncrementSolver::Memory
+  IncrementSolver::memory() const
+  {
+    const BackgroundGrid &grid = parts.grid;
+    const unsigned int    nx   = grid.n_cells(0) + 1;
+    Memory                memory;
+    memory.delta                  = previous_delta;
+    memory.largest_internal_force = largest_internal_force;
+    memory.at_vertices.assign(2 * nx * (grid.n_cells(1) + 1), 0.);
+    if (previous_increment.size() > 0)
+      for (const auto &[cell, ij] : grid.locally_owned_cells())
+        for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              const auto dof = cell->vertex_dof_index(v, c);
+              if (grid.locally_owned_dofs().is_element(dof))
+                memory
+                  .at_vertices[2 * ((ij[1] + v / 2) * nx + ij[0] + v % 2) + c] =
+                  previous_increment(dof);
+            }
+    // Each DoF is owned by one process.
+    Utilities::MPI::sum(memory.at_vertices,
+                        grid.mpi_communicator(),
+                        memory.at_vertices);
+    return memory;
+  }
+
+
+
+  void
+  IncrementSolver::restore(const Memory &memory)
+  {
+    const BackgroundGrid &grid = parts.grid;
+    const unsigned int    nx   = grid.n_cells(0) + 1;
+    previous_delta             = memory.delta;
+    largest_internal_force     = memory.largest_internal_force;
+    previous_increment.reinit(grid.locally_owned_dofs(),
+                              grid.locally_relevant_dofs(),
+                              grid.mpi_communicator());
+    if (memory.delta > 0)
+      for (const auto &[cell, ij] : grid.locally_owned_cells())
+        for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              const auto dof = cell->vertex_dof_index(v, c);
+              if (grid.locally_owned_dofs().is_element(dof))
+                previous_increment(dof) =
+                  memory
+                    .at_vertices[2 * ((ij[1] + v / 2) * nx + ij[0] + v % 2) +
+                                 c];
+            }
+    previous_increment.update_ghost_values();
+  }
 } // namespace bsmpm

@@ -193,6 +193,16 @@ namespace bsmpm
     void
     record(std::map<std::string, double> &quantities) const;
 
+    /** What a load step leaves for the next: the friction history (and the
+     * multipliers' start) at the curves' points and the bodies' places,
+     * for checkpoints. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &point_tractions &body_motion;
+    }
+
     /** The Gauss points of the last finish_increment() on all processes
      * (collective; written by process 0 only): body, x, y (where they
      * touch), gap, p_N, t_T, ds, sliding, as CSV. */

@@ -11,6 +11,8 @@
 
 #include <bsmpm/contact/rigid_body.h>
 
+#include <boost/serialization/vector.hpp>
+
 #include <array>
 #include <map>
 #include <string>
@@ -230,6 +232,16 @@ namespace bsmpm
     record(const std::vector<RigidBody>  &bodies,
            const double                   t,
            std::map<std::string, double> &quantities) const;
+
+    /** What a load step leaves for the next (the places and the free
+     * components' motion), for checkpoints. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &start_place &end_place &solved_start &solved_end &last_motion
+        &last_delta;
+    }
 
   private:
     std::vector<Unknown>            unknowns;

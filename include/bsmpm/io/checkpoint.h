@@ -73,7 +73,8 @@ namespace bsmpm
           MaterialPoints            &points,
           const RunSummary          &summary,
           const OutputWriter        &output,
-          const std::vector<CellId> &weak_cells);
+          const std::vector<CellId> &weak_cells,
+          const std::string         &scene_state);
 
     /**
      * The checkpoint to resume from: @p path itself if it is one, or the
@@ -127,6 +128,12 @@ namespace bsmpm
     read_state(RunSummary          &summary,
                OutputWriter        &output,
                std::vector<CellId> &weak_cells) const;
+
+    /** The scene's state that write() was given (a binary archive of
+     * where the next Newton iterations start and of the contact), empty
+     * if none. */
+    std::string
+    read_scene_state() const;
 
   private:
     MPI_Comm     communicator;

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <boost/serialization/string.hpp>
+
 #include <map>
 #include <string>
 
@@ -113,6 +115,16 @@ namespace bsmpm
     ratio_limit() const
     {
       return flexibility_limit;
+    }
+
+    /** What the run has seen so far (its reference flexibility, the
+     * bracket of the limit load), for checkpoints. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &reference &last_ratio &lower &upper &has_collapsed
+        &why_collapsed;
     }
 
   private:

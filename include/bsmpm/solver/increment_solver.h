@@ -106,6 +106,30 @@ namespace bsmpm
     accept(const LinearAlgebra::distributed::Vector<double> &increment,
            const double                                      delta);
 
+    /** What the next load step starts from (the last converged increment,
+     * at the grid's vertices so that it does not depend on the processes,
+     * its load increment, the residual's scale), for checkpoints. */
+    struct Memory
+    {
+      std::vector<double> at_vertices;
+      double              delta                  = 0;
+      double              largest_internal_force = 0;
+
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int)
+      {
+        archive &at_vertices &delta &largest_internal_force;
+      }
+    };
+
+    /** Collective. */
+    Memory
+    memory() const;
+
+    void
+    restore(const Memory &memory);
+
   private:
     Parts        parts;
     TimerOutput &timer;
