@@ -342,71 +342,43 @@ namespace bsmpm
                 ranges.push_back(
                   {{P[k].u_begin + shifts.back(), P[k].u_end + shifts.back()}});
               }
-            const auto range_of = [&](const double u) {
-              unsigned int r = 0;
-              while (r + 1 < ranges.size() && u > ranges[r][1])
-                ++r;
-              return r;
-            };
-            const auto value_at = [&](const double u) {
-              return spline.value(u - shifts[range_of(u)]);
-            };
-            // The piece from u_a to u_b (in the shifted parameter) facing
-            // body b, its Gauss points' parameters into us.
-            const auto make_piece = [&](const unsigned int   b,
-                                        const double         u_a,
-                                        const double         u_b,
-                                        const double         key_a,
-                                        const double         key_b,
-                                        std::vector<double> &us) {
-              ContactPiece piece =
-                ContactPiece::make(b, c, P[first].cell, 0, u_a, u_b);
-              piece.between_crossings   = true;
-              piece.end_keys            = {{key_a, key_b}};
-              const Tensor<1, 2> &start = body_motion.start(b);
-              for (unsigned int e = 0; e < 2; ++e)
-                {
-                  const double       u = e == 0 ? u_a : u_b;
-                  const unsigned int r = range_of(u);
-                  piece.ends[e]        = spline.value(u - shifts[r]);
-                  piece.end_previous[e] =
-                    traction_at(P[parts[r]], u - shifts[r]);
-                  piece.end_features[e] =
-                    bodies[b].nearest(piece.ends[e], start).feature;
-                }
-              us.clear();
-              for (unsigned int r = 0; r < ranges.size(); ++r)
-                {
-                  const double lo = std::max(ranges[r][0], u_a);
-                  const double hi = std::min(ranges[r][1], u_b);
-                  if (!(hi > lo))
-                    continue;
-                  for (unsigned int q = 0; q < gauss.size(); ++q)
-                    {
-                      const double u = lo + gauss.point(q)[0] * (hi - lo);
-                      us.push_back(u);
-                      piece.positions.push_back(spline.value(u - shifts[r]));
-                      piece.weights.push_back(
-                        spline.derivative(u - shifts[r]).norm() * (hi - lo) *
-                        gauss.weight(q));
-                      piece.phi.push_back((u - u_a) / (u_b - u_a));
-                      piece.previous.push_back(
-                        traction_at(P[parts[r]], u - shifts[r]));
-                      piece.features.push_back(
-                        bodies[b]
-                          .nearest(piece.positions.back(), start)
-                          .feature);
-                      piece.length += piece.weights.back();
-                    }
-                }
-              piece.feature = piece.end_features[0];
-              return piece;
-            };
             const double u_first = ranges.front()[0];
             const double u_last  = ranges.back()[1];
             if (!(u_last > u_first))
               continue;
-            const Point<2> middle = value_at((u_first + u_last) / 2);
+            // The piece's geometry, the same for every body.
+            ContactPiece piece =
+              ContactPiece::make(0, c, P[first].cell, 0, u_first, u_last);
+            piece.between_crossings = true;
+            piece.end_keys     = {{P[first].u_begin, P[parts.back()].u_end}};
+            piece.ends         = {{spline.value(P[first].u_begin),
+                                   spline.value(P[parts.back()].u_end)}};
+            piece.end_previous = {
+              {traction_at(P[first], P[first].u_begin),
+               traction_at(P[parts.back()], P[parts.back()].u_end)}};
+            for (unsigned int r = 0; r < ranges.size(); ++r)
+              {
+                const double lo = ranges[r][0], hi = ranges[r][1];
+                for (unsigned int q = 0; q < gauss.size(); ++q)
+                  {
+                    const double u = lo + gauss.point(q)[0] * (hi - lo);
+                    piece.positions.push_back(spline.value(u - shifts[r]));
+                    piece.weights.push_back(
+                      spline.derivative(u - shifts[r]).norm() * (hi - lo) *
+                      gauss.weight(q));
+                    piece.phi.push_back((u - u_first) / (u_last - u_first));
+                    piece.previous.push_back(
+                      traction_at(P[parts[r]], u - shifts[r]));
+                    piece.length += piece.weights.back();
+                  }
+              }
+            unsigned int middle_range = 0;
+            const double u_middle     = (u_first + u_last) / 2;
+            while (middle_range + 1 < ranges.size() &&
+                   u_middle > ranges[middle_range][1])
+              ++middle_range;
+            const Point<2> middle =
+              spline.value(u_middle - shifts[middle_range]);
             for (unsigned int b = 0; b < bodies.size(); ++b)
               {
                 const Tensor<1, 2> &start = body_motion.start(b);
@@ -415,14 +387,18 @@ namespace bsmpm
                 if (bodies[b].surely_further_than(middle, end, reach) ||
                     bodies[b].nearest(middle, end).gap > reach)
                   continue;
-                std::vector<double> us;
-                ContactPiece        whole = make_piece(b,
-                                                u_first,
-                                                u_last,
-                                                P[first].u_begin,
-                                                P[parts.back()].u_end,
-                                                us);
-                pieces.push_back(std::move(whole));
+                // The parts of the outline the crossings and the Gauss
+                // points face: those nearest before the increment.
+                ContactPiece candidate = piece;
+                candidate.body         = b;
+                for (unsigned int e = 0; e < 2; ++e)
+                  candidate.end_features[e] =
+                    bodies[b].nearest(piece.ends[e], start).feature;
+                candidate.feature = candidate.end_features[0];
+                for (const Point<2> &x : piece.positions)
+                  candidate.features.push_back(
+                    bodies[b].nearest(x, start).feature);
+                pieces.push_back(std::move(candidate));
               }
           }
       }
@@ -792,7 +768,6 @@ namespace bsmpm
     std::array<Tensor<1, 2>, n> N;
     Vector<double>              G(n), T(n);
     double                      length = 0;
-    state.surface.resize(piece.positions.size());
     for (unsigned int q = 0; q < piece.positions.size(); ++q)
       {
         const double w      = piece.weights[q];
@@ -804,7 +779,6 @@ namespace bsmpm
         const Tensor<1, 2> u = phi[0] * u_end[0] + phi[1] * u_end[1];
         const SurfacePoint surface =
           body.to_feature(piece.positions[q] + u, place, piece.features[q]);
-        state.surface[q]    = surface;
         const double lambda = augmented ? phi[0] * piece.end_multipliers[0] +
                                             phi[1] * piece.end_multipliers[1] :
                                           0.;

@@ -412,26 +412,40 @@ namespace bsmpm
   }
 
 
+  template <typename Function>
+  void
+  IncrementSolver::for_each_owned_vertex_dof(const Function &f) const
+  {
+    // Vertex v of cell (i, j) is vertex (i + v % 2, j + v / 2) of the
+    // uniform grid (deal.II's numbering of a quadrilateral's vertices).
+    const BackgroundGrid &grid = parts.grid;
+    const unsigned int    nx   = grid.n_cells(0) + 1;
+    for (const auto &[cell, ij] : grid.locally_owned_cells())
+      for (unsigned int v = 0; v < 4; ++v)
+        for (unsigned int c = 0; c < 2; ++c)
+          {
+            const auto dof = cell->vertex_dof_index(v, c);
+            if (grid.locally_owned_dofs().is_element(dof))
+              f(dof, 2 * ((ij[1] + v / 2) * nx + ij[0] + v % 2) + c);
+          }
+  }
+
+
+
   IncrementSolver::Memory
   IncrementSolver::memory() const
   {
     const BackgroundGrid &grid = parts.grid;
-    const unsigned int    nx   = grid.n_cells(0) + 1;
     Memory                memory;
     memory.delta                  = previous_delta;
     memory.largest_internal_force = largest_internal_force;
-    memory.at_vertices.assign(2 * nx * (grid.n_cells(1) + 1), 0.);
+    memory.at_vertices.assign(2 * (grid.n_cells(0) + 1) * (grid.n_cells(1) + 1),
+                              0.);
     if (previous_increment.size() > 0)
-      for (const auto &[cell, ij] : grid.locally_owned_cells())
-        for (unsigned int v = 0; v < 4; ++v)
-          for (unsigned int c = 0; c < 2; ++c)
-            {
-              const auto dof = cell->vertex_dof_index(v, c);
-              if (grid.locally_owned_dofs().is_element(dof))
-                memory
-                  .at_vertices[2 * ((ij[1] + v / 2) * nx + ij[0] + v % 2) + c] =
-                  previous_increment(dof);
-            }
+      for_each_owned_vertex_dof(
+        [&](const types::global_dof_index dof, const unsigned int k) {
+          memory.at_vertices[k] = previous_increment(dof);
+        });
     // Each DoF is owned by one process.
     Utilities::MPI::sum(memory.at_vertices,
                         grid.mpi_communicator(),
@@ -445,24 +459,16 @@ namespace bsmpm
   IncrementSolver::restore(const Memory &memory)
   {
     const BackgroundGrid &grid = parts.grid;
-    const unsigned int    nx   = grid.n_cells(0) + 1;
     previous_delta             = memory.delta;
     largest_internal_force     = memory.largest_internal_force;
     previous_increment.reinit(grid.locally_owned_dofs(),
                               grid.locally_relevant_dofs(),
                               grid.mpi_communicator());
     if (memory.delta > 0)
-      for (const auto &[cell, ij] : grid.locally_owned_cells())
-        for (unsigned int v = 0; v < 4; ++v)
-          for (unsigned int c = 0; c < 2; ++c)
-            {
-              const auto dof = cell->vertex_dof_index(v, c);
-              if (grid.locally_owned_dofs().is_element(dof))
-                previous_increment(dof) =
-                  memory
-                    .at_vertices[2 * ((ij[1] + v / 2) * nx + ij[0] + v % 2) +
-                                 c];
-            }
+      for_each_owned_vertex_dof(
+        [&](const types::global_dof_index dof, const unsigned int k) {
+          previous_increment(dof) = memory.at_vertices[k];
+        });
     previous_increment.update_ghost_values();
   }
 } // namespace bsmpm

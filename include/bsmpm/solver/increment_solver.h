@@ -131,6 +131,12 @@ namespace bsmpm
     restore(const Memory &memory);
 
   private:
+    /** Calls @p f(dof, k) for every locally owned DoF at the grid's
+     * vertices, k = 2 (vertex index on the uniform grid) + component. */
+    template <typename Function>
+    void
+    for_each_owned_vertex_dof(const Function &f) const;
+
     Parts        parts;
     TimerOutput &timer;
 
