@@ -10,6 +10,7 @@
 #include <boost/archive/binary_oarchive.hpp>
 
 #include <algorithm>
+#include <iomanip>
 #include <cmath>
 #include <sstream>
 
@@ -843,6 +844,33 @@ namespace bsmpm
         result.failure   = "the linear solve failed: " + message_of(e);
       }
     record_newton(solves, result, record);
+    // The last cut that still cycles (doc/newton.md, "Stalled
+    // increments"): its best iterate, if close enough, rather than a
+    // failed run. The residual it leaves is part of the next step's.
+    // Under load control such a step is the limit load instead.
+    if (!result.converged && !collapse_detector.active() &&
+        cuts >= newton.max_step_cuts())
+      {
+        const double ratio = increment_solver->take_best_iterate(
+          newton.stall_tolerance(),
+          has_prescribed ? &prescribed : nullptr,
+          increment);
+        if (ratio >= 0)
+          {
+            newton.log_failure(result,
+                               lambda,
+                               delta,
+                               pcout.is_active() ? &pcout.get_stream() :
+                                                   nullptr);
+            pcout << "       load " << lambda << " + " << delta
+                  << ": accepted the best iterate, |R| = " << std::setprecision(2)
+                  << ratio << std::setprecision(6)
+                  << " of the largest internal force (Nonlinear "
+                     "solver/Stall tolerance)\n";
+            record.stalled_residual = std::max(record.stalled_residual, ratio);
+            result.converged        = true;
+          }
+      }
     if (!result.converged)
       {
         // Under load control a step that cannot be converged however far it

@@ -117,8 +117,20 @@ namespace bsmpm
     // residual stresses in balance) has an |R(0)| that is round-off of
     // forces a billion times larger, which a relative tolerance cannot
     // reach.
-    const double at_zero = with_bodies(
-      assembly.newton_system(update, points, increment, prescribed));
+    // The best iterate so far (take_best_iterate()).
+    best_norm           = std::numeric_limits<double>::infinity();
+    const auto remember = [&](const double norm) {
+      if (norm < best_norm)
+        {
+          best_norm      = norm;
+          best_increment = increment;
+          if (motion != nullptr)
+            best_places = motion->values();
+        }
+      return norm;
+    };
+    const double at_zero = remember(with_bodies(
+      assembly.newton_system(update, points, increment, prescribed)));
     largest_internal_force =
       std::max(largest_internal_force, assembly.internal_force_size());
     const double reference = std::max(at_zero, 1e-6 * largest_internal_force);
@@ -152,8 +164,8 @@ namespace bsmpm
         increment.add(1e-6 * delta / previous_delta, previous_increment);
         assembly.constraints().set_zero(increment);
         increment.update_ghost_values();
-        start_norm = with_bodies(
-          assembly.newton_system(update, points, increment, prescribed));
+        start_norm = remember(with_bodies(
+          assembly.newton_system(update, points, increment, prescribed)));
       }
     else if (has_last_increment)
       {
@@ -166,8 +178,8 @@ namespace bsmpm
         // displacement may still leave a larger one: only one ten times
         // larger than that of zero is dropped (cantilever in finite
         // strain: 26 times in step 3).
-        start_norm = with_bodies(
-          assembly.newton_system(update, points, increment, prescribed));
+        start_norm = remember(with_bodies(
+          assembly.newton_system(update, points, increment, prescribed)));
         if (!(start_norm < 10 * reference))
           {
             increment = 0;
@@ -176,8 +188,8 @@ namespace bsmpm
           }
       }
     const auto residual = [&]() {
-      return with_bodies(
-        assembly.newton_system(update, points, increment, prescribed));
+      return remember(with_bodies(
+        assembly.newton_system(update, points, increment, prescribed)));
     };
     const auto correct = [&]() {
       TimerOutput::Scope            t(timer, "solve");
@@ -301,6 +313,34 @@ namespace bsmpm
         result.failure   = more.failure;
       }
     return result;
+  }
+
+
+
+  double
+  IncrementSolver::take_best_iterate(
+    const double                                      tolerance,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    LinearAlgebra::distributed::Vector<double>       &increment)
+  {
+    if (!std::isfinite(best_norm) ||
+        best_increment.size() != increment.size())
+      return -1;
+    increment = best_increment;
+    increment.update_ghost_values();
+    if (parts.contact != nullptr && parts.contact->motion().has_unknowns())
+      parts.contact->motion().set_values(best_places);
+    parts.assembly.newton_system(*parts.constitutive_update,
+                                 parts.points,
+                                 increment,
+                                 prescribed);
+    // The scale: the stresses the residual balances, in this state or
+    // earlier in the run (in the first step only this one's).
+    const double scale = std::max(largest_internal_force,
+                                  parts.assembly.internal_force_size());
+    const double ratio = scale > 0 ? best_norm / scale :
+                                     std::numeric_limits<double>::infinity();
+    return ratio <= tolerance ? ratio : -1.;
   }
 
 

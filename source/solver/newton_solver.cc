@@ -27,6 +27,17 @@ namespace bsmpm
                       Patterns::Integer(0, 30),
                       "How many times a load increment that does not "
                       "converge may be halved before the run stops.");
+    prm.declare_entry(
+      "Stall tolerance",
+      "1e-2",
+      Patterns::Double(0, 1),
+      "When the iterations of the last allowed cut still do not converge, "
+      "the best iterate of that smallest increment is accepted (and the "
+      "step table says so) if its residual is below this fraction of the "
+      "largest internal force of the run; the next step's residual "
+      "carries what it leaves. Perfectly plastic points and contact "
+      "points that switch at the solution make Newton cycle there "
+      "(doc/newton.md). 0: never accept.");
     prm.declare_entry("Line search steps",
                       "5",
                       Patterns::Integer(0, 30),
@@ -57,6 +68,7 @@ namespace bsmpm
     max_iterations              = prm.get_integer("Maximum iterations");
     tolerance                   = prm.get_double("Residual tolerance");
     max_cuts                    = prm.get_integer("Maximum step cuts");
+    accepted_stall            = prm.get_double("Stall tolerance");
     line_search                 = prm.get_integer("Line search steps");
     const std::string predictor = prm.get("Predictor");
     start                       = predictor == "tangent" ? Predictor::tangent :

@@ -15,6 +15,7 @@
 #include <bsmpm/solver/newton_solver.h>
 #include <bsmpm/solver/system_assembly.h>
 
+#include <limits>
 #include <string>
 
 namespace bsmpm
@@ -100,6 +101,19 @@ namespace bsmpm
                      double                                     &load_increment,
                      LinearSolves                               &solves);
 
+    /**
+     * After solve_newton() did not converge: puts the iterate with the
+     * smallest residual back into @p increment (and the bodies under a
+     * force where it had them) and assembles the system there. Returns
+     * that residual relative to the largest internal force of the run (or
+     * of this state, if larger) when it is at most @p tolerance; else a
+     * negative number (the increment is then to be discarded).
+     */
+    double
+    take_best_iterate(const double                                      tolerance,
+                      const LinearAlgebra::distributed::Vector<double> *prescribed,
+                      LinearAlgebra::distributed::Vector<double>       &increment);
+
     /** Keeps the converged @p increment of load increment @p delta as the
      * start of the next Newton iterations. */
     void
@@ -147,6 +161,11 @@ namespace bsmpm
     /** The largest |f_int| of the run's Newton systems at zero increment:
      * a floor of the residual's scale. */
     double largest_internal_force = 0;
+    /** The iterate of the last solve_newton() with the smallest residual
+     * |(R, r_c)|, and the places of the bodies under a force there. */
+    LinearAlgebra::distributed::Vector<double> best_increment;
+    Vector<double>                             best_places;
+    double best_norm = std::numeric_limits<double>::infinity();
   };
 } // namespace bsmpm
 

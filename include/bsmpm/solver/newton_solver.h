@@ -152,11 +152,21 @@ namespace bsmpm
       return max_cuts;
     }
 
+    /** The residual, relative to the largest internal force of the run,
+     * below which the best iterate of a last cut that did not converge is
+     * accepted (Nonlinear solver/Stall tolerance; 0: never). */
+    double
+    stall_tolerance() const
+    {
+      return accepted_stall;
+    }
+
   private:
     bool         stall_is_convergence = false;
     unsigned int max_iterations       = 20;
     double       tolerance            = 1e-9;
     unsigned int max_cuts             = 6;
+    double       accepted_stall     = 1e-2;
     unsigned int line_search          = 5;
     Predictor    start                = Predictor::automatic;
   };
