@@ -10,8 +10,8 @@
 #include <boost/archive/binary_oarchive.hpp>
 
 #include <algorithm>
-#include <iomanip>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace bsmpm
@@ -851,10 +851,11 @@ namespace bsmpm
     if (!result.converged && !collapse_detector.active() &&
         cuts >= newton.max_step_cuts())
       {
-        const double ratio = increment_solver->take_best_iterate(
-          newton.stall_tolerance(),
-          has_prescribed ? &prescribed : nullptr,
-          increment);
+        const double ratio =
+          increment_solver->take_best_iterate(newton.stall_tolerance(),
+                                              has_prescribed ? &prescribed :
+                                                               nullptr,
+                                              increment);
         if (ratio >= 0)
           {
             newton.log_failure(result,
@@ -863,8 +864,8 @@ namespace bsmpm
                                pcout.is_active() ? &pcout.get_stream() :
                                                    nullptr);
             pcout << "       load " << lambda << " + " << delta
-                  << ": accepted the best iterate, |R| = " << std::setprecision(2)
-                  << ratio << std::setprecision(6)
+                  << ": accepted the best iterate, |R| = "
+                  << std::setprecision(2) << ratio << std::setprecision(6)
                   << " of the largest internal force (Nonlinear "
                      "solver/Stall tolerance)\n";
             record.stalled_residual = std::max(record.stalled_residual, ratio);

@@ -323,8 +323,7 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     LinearAlgebra::distributed::Vector<double>       &increment)
   {
-    if (!std::isfinite(best_norm) ||
-        best_increment.size() != increment.size())
+    if (!std::isfinite(best_norm) || best_increment.size() != increment.size())
       return -1;
     increment = best_increment;
     increment.update_ghost_values();
@@ -336,10 +335,10 @@ namespace bsmpm
                                  prescribed);
     // The scale: the stresses the residual balances, in this state or
     // earlier in the run (in the first step only this one's).
-    const double scale = std::max(largest_internal_force,
-                                  parts.assembly.internal_force_size());
-    const double ratio = scale > 0 ? best_norm / scale :
-                                     std::numeric_limits<double>::infinity();
+    const double scale =
+      std::max(largest_internal_force, parts.assembly.internal_force_size());
+    const double ratio =
+      scale > 0 ? best_norm / scale : std::numeric_limits<double>::infinity();
     return ratio <= tolerance ? ratio : -1.;
   }
 

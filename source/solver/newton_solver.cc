@@ -68,7 +68,7 @@ namespace bsmpm
     max_iterations              = prm.get_integer("Maximum iterations");
     tolerance                   = prm.get_double("Residual tolerance");
     max_cuts                    = prm.get_integer("Maximum step cuts");
-    accepted_stall            = prm.get_double("Stall tolerance");
+    accepted_stall              = prm.get_double("Stall tolerance");
     line_search                 = prm.get_integer("Line search steps");
     const std::string predictor = prm.get("Predictor");
     start                       = predictor == "tangent" ? Predictor::tangent :

@@ -110,9 +110,10 @@ namespace bsmpm
      * negative number (the increment is then to be discarded).
      */
     double
-    take_best_iterate(const double                                      tolerance,
-                      const LinearAlgebra::distributed::Vector<double> *prescribed,
-                      LinearAlgebra::distributed::Vector<double>       &increment);
+    take_best_iterate(
+      const double                                      tolerance,
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      LinearAlgebra::distributed::Vector<double>       &increment);
 
     /** Keeps the converged @p increment of load increment @p delta as the
      * start of the next Newton iterations. */

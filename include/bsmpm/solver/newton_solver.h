@@ -166,7 +166,7 @@ namespace bsmpm
     unsigned int max_iterations       = 20;
     double       tolerance            = 1e-9;
     unsigned int max_cuts             = 6;
-    double       accepted_stall     = 1e-2;
+    double       accepted_stall       = 1e-2;
     unsigned int line_search          = 5;
     Predictor    start                = Predictor::automatic;
   };
