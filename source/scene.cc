@@ -562,6 +562,7 @@ namespace bsmpm
 
         if (exact_solution)
           evaluate_errors();
+        report_stalled_increments();
         run_summary.finish(verification,
                            output,
                            timer,
@@ -580,6 +581,32 @@ namespace bsmpm
         run_summary.record_failure(step, e.what(), output);
         throw;
       }
+  }
+
+
+
+  void
+  Scene::report_stalled_increments()
+  {
+    // Said at the end as well as in the table: the answer of such a run
+    // holds to that residual, not to the Newton tolerance.
+    unsigned int n       = 0;
+    double       largest = 0;
+    for (const auto &s : run_summary.steps)
+      {
+        n += s.stalled_increments;
+        largest = std::max(largest, s.stalled_residual);
+      }
+    if (n == 0)
+      return;
+    run_summary.quantities["stalled_increments"]   = n;
+    run_summary.quantities["stalled_residual_max"] = largest;
+    pcout << "\nNote: " << n
+          << " load increment(s) did not converge in their last cut and took "
+             "their best iterate (Nonlinear solver/Stall tolerance), the "
+             "largest residual "
+          << std::setprecision(2) << largest << std::setprecision(6)
+          << " of the largest internal force: see the step table.\n";
   }
 
 
@@ -868,6 +895,7 @@ namespace bsmpm
                   << std::setprecision(2) << ratio << std::setprecision(6)
                   << " of the largest internal force (Nonlinear "
                      "solver/Stall tolerance)\n";
+            ++record.stalled_increments;
             record.stalled_residual = std::max(record.stalled_residual, ratio);
             result.converged        = true;
           }

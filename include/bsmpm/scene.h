@@ -160,6 +160,11 @@ namespace bsmpm
      * points after a load step, into the run's quantities. */
     void
     record_quantities(const RunSummary::Step &record);
+    /** Increments accepted at their best iterate (Nonlinear solver/Stall
+     * tolerance): how many and the largest residual, said at the end of
+     * the run and in its quantities. */
+    void
+    report_stalled_increments();
     void
     write_output(const unsigned int step, const double load_factor);
     void

@@ -105,8 +105,9 @@ namespace bsmpm
             for (unsigned int k = 0; k < s.newton_corrections.size(); ++k)
               out << (k ? ", " : "") << json_number(s.newton_corrections[k]);
             out << "]";
-            if (s.stalled_residual > 0)
-              out << ", \"stalled_residual\": "
+            if (s.stalled_increments > 0)
+              out << ", \"stalled_increments\": " << s.stalled_increments
+                  << ", \"stalled_residual\": "
                   << json_number(s.stalled_residual);
           }
         out << ", \"quantities\": {";

@@ -37,10 +37,12 @@ namespace bsmpm
       unsigned long long  n_yielded  = 0;
       std::vector<double> newton_residuals;
       std::vector<double> newton_corrections;
-      /** An increment whose last cut did not converge but whose best
-       * iterate was accepted (Nonlinear solver/Stall tolerance): its
-       * residual relative to the largest internal force; 0 if none. */
-      double stalled_residual = 0;
+      /** Increments of the step whose last cut did not converge but whose
+       * best iterate was accepted (Nonlinear solver/Stall tolerance), and
+       * the largest of their residuals relative to the largest internal
+       * force; 0 if none. */
+      unsigned int stalled_increments = 0;
+      double       stalled_residual   = 0;
       /** The scene's quantities after this step (support reactions, the
        * probe, ...): load-displacement curves. */
       std::map<std::string, double> quantities;
