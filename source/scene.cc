@@ -854,10 +854,19 @@ namespace bsmpm
                                         gravity);
     IncrementSolver::LinearSolves solves;
     NewtonSolver::Result          result;
+    // The last cut that may still cycle (doc/newton.md, "Stalled
+    // increments"): its best iterate, if close enough, rather than a
+    // failed run. Under load control such a step is the limit load.
+    const bool may_stall =
+      !collapse_detector.active() && cuts >= newton.max_step_cuts();
     try
       {
-        result = increment_solver->solve_newton(
-          delta, has_prescribed ? &prescribed : nullptr, increment, solves);
+        result =
+          increment_solver->solve_newton(delta,
+                                         has_prescribed ? &prescribed : nullptr,
+                                         increment,
+                                         solves,
+                                         may_stall);
       }
     catch (const ExceptionBase &e)
       {
@@ -871,12 +880,9 @@ namespace bsmpm
         result.failure   = "the linear solve failed: " + message_of(e);
       }
     record_newton(solves, result, record);
-    // The last cut that still cycles (doc/newton.md, "Stalled
-    // increments"): its best iterate, if close enough, rather than a
-    // failed run. The residual it leaves is part of the next step's.
-    // Under load control such a step is the limit load instead.
-    if (!result.converged && !collapse_detector.active() &&
-        cuts >= newton.max_step_cuts())
+    // The residual an accepted iterate leaves is part of the next
+    // increment's.
+    if (!result.converged && may_stall)
       {
         const double ratio =
           increment_solver->take_best_iterate(newton.stall_tolerance(),

@@ -70,7 +70,8 @@ namespace bsmpm
     const double                                      delta,
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     LinearAlgebra::distributed::Vector<double>       &increment,
-    LinearSolves                                     &solves)
+    LinearSolves                                     &solves,
+    const bool                                        keep_best)
   {
     const BackgroundGrid     &grid     = parts.grid;
     SystemAssembly           &assembly = parts.assembly;
@@ -117,10 +118,11 @@ namespace bsmpm
     // residual stresses in balance) has an |R(0)| that is round-off of
     // forces a billion times larger, which a relative tolerance cannot
     // reach.
-    // The best iterate so far (take_best_iterate()).
+    // The best iterate so far (take_best_iterate()): a copy of the
+    // increment per improvement, only where it may be taken.
     best_norm           = std::numeric_limits<double>::infinity();
     const auto remember = [&](const double norm) {
-      if (norm < best_norm)
+      if (keep_best && norm < best_norm)
         {
           best_norm      = norm;
           best_increment = increment;

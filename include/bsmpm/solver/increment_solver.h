@@ -78,13 +78,15 @@ namespace bsmpm
      * figures of the linear solves to @p solves. With contact, the
      * iterations go on after convergence while the parts of the curves
      * that touch a rigid body or the contact's multipliers change
-     * (CurveContact::after_convergence()).
+     * (CurveContact::after_convergence()). With @p keep_best, the iterate
+     * of smallest residual is kept for take_best_iterate().
      */
     NewtonSolver::Result
     solve_newton(const double                                      delta,
                  const LinearAlgebra::distributed::Vector<double> *prescribed,
                  LinearAlgebra::distributed::Vector<double>       &increment,
-                 LinearSolves                                     &solves);
+                 LinearSolves                                     &solves,
+                 const bool keep_best = false);
 
     /**
      * Newton iterations under displacement control (DisplacementControl)
@@ -102,7 +104,8 @@ namespace bsmpm
                      LinearSolves                               &solves);
 
     /**
-     * After solve_newton() did not converge: puts the iterate with the
+     * After solve_newton() with keep_best did not converge: puts the iterate
+     * with the
      * smallest residual back into @p increment (and the bodies under a
      * force where it had them) and assembles the system there. Returns
      * that residual relative to the largest internal force of the run (or
@@ -162,7 +165,8 @@ namespace bsmpm
     /** The largest |f_int| of the run's Newton systems at zero increment:
      * a floor of the residual's scale. */
     double largest_internal_force = 0;
-    /** The iterate of the last solve_newton() with the smallest residual
+    /** The iterate of the last solve_newton() with keep_best with the
+     * smallest residual
      * |(R, r_c)|, and the places of the bodies under a force there. */
     LinearAlgebra::distributed::Vector<double> best_increment;
     Vector<double>                             best_places;
