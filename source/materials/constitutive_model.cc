@@ -61,6 +61,14 @@ namespace bsmpm
 
 
 
+  double
+  ConstitutiveModel::elastic_reach(const ConstitutiveState &) const
+  {
+    return 0;
+  }
+
+
+
   void
   ConstitutiveModel::plane_strain_response(const ConstitutiveResponse &response,
                                            std::array<double, 4>      &stress,

@@ -238,6 +238,26 @@ namespace bsmpm
 
 
   double
+  DruckerPragerPlasticity::elastic_reach(const ConstitutiveState &state) const
+  {
+    // f(e) = sqrt(2) mu |dev e| + eta K tr e - xi c. With
+    // |de|^2 = |dev de|^2 + (tr de)^2 / 3, the change of f over a step de is
+    // at most sqrt(2 mu^2 + 3 eta^2 K^2) |de| (Cauchy-Schwarz): the step
+    // stays elastic while |de| <= -f(e_n) / that. A millionth of a
+    // millionth of the terms' size is kept back for round-off.
+    const SymmetricTensor<2, 3> &e = state.elastic_strain;
+    const double shear             = std::sqrt(2.) * mu * deviator(e).norm();
+    const double mean              = eta_f * kappa * trace(e);
+    const double f                 = shear + mean - xi_f * c;
+    const double scale = shear + std::abs(mean) + std::abs(xi_f * c);
+    const double slope =
+      std::sqrt(2. * mu * mu + 3. * eta_f * eta_f * kappa * kappa);
+    return std::max(0., (-f - 1e-12 * scale) / slope);
+  }
+
+
+
+  double
   DruckerPragerPlasticity::yield_function(const SymmetricTensor<2, 3> &stress,
                                           const double) const
   {

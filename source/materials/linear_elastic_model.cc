@@ -1,5 +1,7 @@
 #include <bsmpm/materials/linear_elastic_model.h>
 
+#include <limits>
+
 namespace bsmpm
 {
   LinearElasticModel::LinearElasticModel(const double youngs_modulus,
@@ -50,6 +52,14 @@ namespace bsmpm
   LinearElasticModel::elastic_tangent() const
   {
     return stiffness;
+  }
+
+
+
+  double
+  LinearElasticModel::elastic_reach(const ConstitutiveState &) const
+  {
+    return std::numeric_limits<double>::infinity();
   }
 
 

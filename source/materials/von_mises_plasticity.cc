@@ -1,5 +1,6 @@
 #include <bsmpm/materials/von_mises_plasticity.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace bsmpm
@@ -164,6 +165,22 @@ namespace bsmpm
           isotropic_stiffness().access_raw_entry(6 * r + c) +
           (a * deviatoric_projector(r, c) + b * n_voigt[r] * n_voigt[c]);
     return true;
+  }
+
+
+
+  double
+  VonMisesPlasticity::elastic_reach(const ConstitutiveState &state) const
+  {
+    // f(e) = sqrt(6) mu |dev e| - (sigma_y + H eps_bar), and
+    // |dev(e_n + de)| <= |dev e_n| + |de|: the step stays elastic while
+    // |de| <= Y / (sqrt(6) mu) - |dev e_n|. A millionth of a millionth of
+    // the yield strain is kept back for the round-off of the two sides.
+    const double yield_strain =
+      (sigma_y + H * state.equivalent_plastic_strain) / (std::sqrt(6.) * mu);
+    return std::max(0.,
+                    (1. - 1e-12) * yield_strain -
+                      deviator(state.elastic_strain).norm());
   }
 
 

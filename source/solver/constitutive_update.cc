@@ -240,6 +240,7 @@ namespace bsmpm
                                          const Kinematics         kinematics)
     : model(model)
     , b_bar(b_bar)
+    , elastic_voigt(voigt_tangent(model.elastic_tangent()))
     , point_kinematics(kinematics)
   {}
 
@@ -279,31 +280,51 @@ namespace bsmpm
                                   const Q1CellKernel::LocalVector &d,
                                   const CellMoments *exact_moments) const
   {
+    double v = 0, vs = 0, vt = 0;
+    if (b_bar)
+      for (const auto &point : cell_points)
+        {
+          const double volume = point.props[Property::volume];
+          v += volume;
+          vs += volume * point.st[0];
+          vt += volume * point.st[1];
+        }
+    return cell_strain(kernel, v, vs, vt, d, exact_moments);
+  }
+
+
+
+  ConstitutiveUpdate::CellStrain
+  ConstitutiveUpdate::cell_strain(const Q1CellKernel              &kernel,
+                                  const double                     v,
+                                  const double                     vs,
+                                  const double                     vt,
+                                  const Q1CellKernel::LocalVector &d,
+                                  const CellMoments *exact_moments) const
+  {
     CellStrain strain;
     strain.coefficients = kernel.strain_coefficients(d);
     strain.use_b_bar    = false;
     if (b_bar)
-      centroid_strain(kernel, cell_points, d, exact_moments, strain);
+      centroid_strain(kernel, v, vs, vt, d, exact_moments, strain);
+    // B-bar columns: B_i + (theta_i(centroid) - theta_i(s, t)) / 3
+    // (1, 1, 1, 0), each part affine in (s, t).
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      {
+        const std::array<Voigt, 3> parts = kernel.strain_column_parts(i);
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            double shift = 0;
+            if (strain.use_b_bar)
+              shift = ((a == 0 ? strain.centroid_volumetric[i] : 0.) -
+                       parts[a][0] - parts[a][1]) /
+                      3;
+            strain.columns[a][i] = Tensor<1, 4>(
+              {parts[a][0] + shift, parts[a][1] + shift, shift, parts[a][2]});
+          }
+      }
     if (point_kinematics == Kinematics::small_strain)
       {
-        // B-bar columns: B_i + (theta_i(centroid) - theta_i(s, t)) / 3
-        // (1, 1, 1, 0), each part affine in (s, t).
-        for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-          {
-            const std::array<Voigt, 3> parts = kernel.strain_column_parts(i);
-            for (unsigned int a = 0; a < 3; ++a)
-              {
-                double shift = 0;
-                if (strain.use_b_bar)
-                  shift = ((a == 0 ? strain.centroid_volumetric[i] : 0.) -
-                           parts[a][0] - parts[a][1]) /
-                          3;
-                strain.columns[a][i] = Tensor<1, 4>({parts[a][0] + shift,
-                                                     parts[a][1] + shift,
-                                                     shift,
-                                                     parts[a][2]});
-              }
-          }
         for (unsigned int a = 0; a < 3; ++a)
           {
             strain.increment[a] = Tensor<1, 4>();
@@ -317,22 +338,16 @@ namespace bsmpm
 
 
   void
-  ConstitutiveUpdate::centroid_strain(const Q1CellKernel           &kernel,
-                                      const std::vector<PointView> &cell_points,
+  ConstitutiveUpdate::centroid_strain(const Q1CellKernel              &kernel,
+                                      const double                     v,
+                                      const double                     vs,
+                                      const double                     vt,
                                       const Q1CellKernel::LocalVector &d,
                                       const CellMoments *exact_moments,
                                       CellStrain        &strain) const
   {
     // The volumetric strain of Q1 is affine in the cell, so its mean over
     // the points is its value at their volume-weighted centroid.
-    double v = 0, vs = 0, vt = 0;
-    for (const auto &point : cell_points)
-      {
-        const double volume = point.props[Property::volume];
-        v += volume;
-        vs += volume * point.st[0];
-        vt += volume * point.st[1];
-      }
     if (v == 0.)
       return;
     strain.use_b_bar = true;
@@ -366,29 +381,6 @@ namespace bsmpm
         for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
           strain.centroid_gradients[i] =
             f_inv_T * kernel.scalar_gradient(i, strain.centroid);
-      }
-  }
-
-
-
-  void
-  ConstitutiveUpdate::strain_columns(const Q1CellKernel          &kernel,
-                                     const CellStrain            &strain,
-                                     const Point<2>              &st,
-                                     std::array<Voigt, 8>        &B,
-                                     std::array<Tensor<1, 4>, 8> &B_bar)
-  {
-    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-      {
-        B[i] = kernel.strain_column(i, st);
-        // B-bar: the point's volumetric strain replaced by the cell's mean,
-        // eps_bar = eps + (theta_mean - theta) / 3 * 1 (zz included).
-        const double shift =
-          strain.use_b_bar ?
-            (strain.centroid_volumetric[i] - B[i][0] - B[i][1]) / 3 :
-            0.;
-        B_bar[i] =
-          Tensor<1, 4>({B[i][0] + shift, B[i][1] + shift, shift, B[i][2]});
       }
   }
 
@@ -573,13 +565,11 @@ namespace bsmpm
     // M_ab = sum_p w_p m_a m_b alone, and the cell to H_ab + M_ab D_e, as
     // the linear kernel's moments do (a cell whose points all stay elastic
     // costs their return maps and six sums each).
-    double             H[6][16] = {};
-    double             M[6]     = {};
-    double             S[3][4]  = {};
-    bool               plastic  = false;
-    const bool         small    = point_kinematics == Kinematics::small_strain;
-    const Tensor<2, 4> D_e =
-      small ? voigt_tangent(model.elastic_tangent()) : Tensor<2, 4>();
+    double     H[6][16] = {};
+    double     M[6]     = {};
+    double     S[3][4]  = {};
+    bool       plastic  = false;
+    const bool small    = point_kinematics == Kinematics::small_strain;
     // The Voigt tangent of a point that yields, row by row.
     std::array<double, 16> D_flat;
     // Small strain: adds the stress @p sigma of the point at @p st with
@@ -842,56 +832,197 @@ namespace bsmpm
 
     if (small)
       {
-        // K and f from the sums (see H above):
-        // G_a,j = sum_b (H_ab P_b,j + M_ab D_e P_b,j),
-        // K_ij = sum_a P_a,i^T G_a,j; for a symmetric tangent the upper
-        // triangle, mirrored below.
-        static constexpr unsigned int block[3][3] = {{0, 1, 2},
-                                                     {1, 3, 4},
-                                                     {2, 4, 5}};
-        const auto                   &P           = strain.columns;
-        double                        G[3][n][4]  = {};
-        for (unsigned int b = 0; b < 3; ++b)
-          for (unsigned int j = 0; j < n; ++j)
-            {
-              const Tensor<1, 4> DP = D_e * P[b][j];
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int r = 0; r < 4; ++r)
-                  G[a][j][r] += M[block[a][b]] * DP[r];
-            }
-        if (plastic)
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int b = 0; b < 3; ++b)
-              {
-                const double *h = H[block[a][b]];
-                for (unsigned int j = 0; j < n; ++j)
-                  for (unsigned int r = 0; r < 4; ++r)
-                    G[a][j][r] +=
-                      h[4 * r] * P[b][j][0] + h[4 * r + 1] * P[b][j][1] +
-                      h[4 * r + 2] * P[b][j][2] + h[4 * r + 3] * P[b][j][3];
-              }
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            double force = 0;
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int r = 0; r < 4; ++r)
-                force += P[a][i][r] * S[a][r];
-            f[i] = force;
-            for (unsigned int j = symmetric ? i : 0; j < n; ++j)
-              {
-                double sum = 0;
-                for (unsigned int a = 0; a < 3; ++a)
-                  for (unsigned int r = 0; r < 4; ++r)
-                    sum += P[a][i][r] * G[a][j][r];
-                K(i, j) = sum;
-              }
-          }
+        system_from_moments(strain, H, plastic, M, S, K, f);
+        return n_yielded;
       }
     if (symmetric)
       for (unsigned int i = 0; i < n; ++i)
         for (unsigned int j = 0; j < i; ++j)
           K(i, j) = K(j, i);
     return n_yielded;
+  }
+
+
+
+  void
+  ConstitutiveUpdate::system_from_moments(const CellStrain &strain,
+                                          const double (&H)[6][16],
+                                          const bool plastic,
+                                          const double (&M)[6],
+                                          const double (&S)[3][4],
+                                          FullMatrix<double> &K,
+                                          Vector<double>     &f) const
+  {
+    constexpr unsigned int n         = Q1CellKernel::dofs_per_cell;
+    const bool             symmetric = model.symmetric_tangent();
+    // K and f from the sums (see H in cell_system()):
+    // G_a,j = sum_b (H_ab P_b,j + M_ab D_e P_b,j),
+    // K_ij = sum_a P_a,i^T G_a,j; for a symmetric tangent the upper
+    // triangle, mirrored below.
+    static constexpr unsigned int block[3][3] = {{0, 1, 2},
+                                                 {1, 3, 4},
+                                                 {2, 4, 5}};
+    const auto                   &P           = strain.columns;
+    double                        G[3][n][4]  = {};
+    for (unsigned int b = 0; b < 3; ++b)
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const Tensor<1, 4> DP = elastic_voigt * P[b][j];
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int r = 0; r < 4; ++r)
+              G[a][j][r] += M[block[a][b]] * DP[r];
+        }
+    if (plastic)
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          {
+            const double *h = H[block[a][b]];
+            for (unsigned int j = 0; j < n; ++j)
+              for (unsigned int r = 0; r < 4; ++r)
+                G[a][j][r] +=
+                  h[4 * r] * P[b][j][0] + h[4 * r + 1] * P[b][j][1] +
+                  h[4 * r + 2] * P[b][j][2] + h[4 * r + 3] * P[b][j][3];
+          }
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        double force = 0;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int r = 0; r < 4; ++r)
+            force += P[a][i][r] * S[a][r];
+        f[i] = force;
+        for (unsigned int j = symmetric ? i : 0; j < n; ++j)
+          {
+            double sum = 0;
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int r = 0; r < 4; ++r)
+                sum += P[a][i][r] * G[a][j][r];
+            K(i, j) = sum;
+          }
+      }
+    if (symmetric)
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < i; ++j)
+          K(i, j) = K(j, i);
+  }
+
+
+
+  ConstitutiveUpdate::ElasticCell
+  ConstitutiveUpdate::elastic_cell(
+    const std::vector<PointView> &cell_points) const
+  {
+    ElasticCell       cell;
+    ConstitutiveState state;
+    double            reach = std::numeric_limits<double>::infinity();
+    double            s_min = 1, s_max = 0, t_min = 1, t_max = 0;
+    for (const auto &point : cell_points)
+      {
+        const auto  &props  = point.props;
+        const double volume = props[Property::volume];
+        cell.v += volume;
+        cell.vs += volume * point.st[0];
+        cell.vt += volume * point.st[1];
+        const double w = integration_weight(props);
+        if (w == 0.)
+          continue;
+        state.elastic_strain            = stored_elastic_strain(props);
+        state.equivalent_plastic_strain = props[Property::plastic_strain];
+        reach              = std::min(reach, model.elastic_reach(state));
+        const Point<2> &st = point.st;
+        s_min              = std::min(s_min, st[0]);
+        s_max              = std::max(s_max, st[0]);
+        t_min              = std::min(t_min, st[1]);
+        t_max              = std::max(t_max, st[1]);
+        const double ws = w * st[0], wt = w * st[1];
+        const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+        for (unsigned int q = 0; q < 6; ++q)
+          cell.M[q] += m[q];
+        const Tensor<1, 4> e({props[Property::elastic_strain],
+                              props[Property::elastic_strain + 1],
+                              props[Property::elastic_strain + 2],
+                              2 * props[Property::elastic_strain + 3]});
+        for (unsigned int a = 0; a < 3; ++a)
+          cell.strain_moments[a] += m[a] * e;
+      }
+    // No point with weight: the cell is left to the point-by-point path.
+    if (s_min > s_max)
+      return ElasticCell();
+    cell.reach        = reach;
+    cell.centre       = Point<2>((s_min + s_max) / 2, (t_min + t_max) / 2);
+    cell.half_width_s = (s_max - s_min) / 2;
+    cell.half_width_t = (t_max - t_min) / 2;
+    return cell;
+  }
+
+
+
+  bool
+  ConstitutiveUpdate::elastic_cell_system(
+    const Q1CellKernel              &kernel,
+    const ElasticCell               &cell,
+    const Q1CellKernel::LocalVector &d,
+    FullMatrix<double>              &K,
+    Vector<double>                  &f,
+    const CellMoments               *exact_moments) const
+  {
+    if (!(cell.reach > 0) || point_kinematics != Kinematics::small_strain)
+      return false;
+    const CellStrain strain =
+      cell_strain(kernel, cell.v, cell.vs, cell.vt, d, exact_moments);
+    // The norm of a strain tensor from its (xx, yy, zz, engineering xy).
+    const auto norm = [](const Tensor<1, 4> &e) {
+      return std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] +
+                       e[3] * e[3] / 2);
+    };
+    // The largest |de| over the box of the points' coordinates.
+    const auto  &E = strain.increment;
+    const double largest =
+      norm(E[0] + cell.centre[0] * E[1] + cell.centre[1] * E[2]) +
+      cell.half_width_s * norm(E[1]) + cell.half_width_t * norm(E[2]);
+    if (!(largest < cell.reach))
+      return false;
+    // S_a = D_e (sum_p w m_a e_n,p + sum_b M_ab E_b); H_ab = M_ab D_e.
+    static constexpr unsigned int block[3][3] = {{0, 1, 2},
+                                                 {1, 3, 4},
+                                                 {2, 4, 5}};
+    double                        S[3][4];
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        Tensor<1, 4> e = cell.strain_moments[a];
+        for (unsigned int b = 0; b < 3; ++b)
+          e += cell.M[block[a][b]] * E[b];
+        const Tensor<1, 4> sigma = elastic_voigt * e;
+        for (unsigned int r = 0; r < 4; ++r)
+          S[a][r] = sigma[r];
+      }
+    static constexpr double no_plastic_moments[6][16] = {};
+    double                  M[6];
+    std::copy(cell.M.begin(), cell.M.end(), M);
+    system_from_moments(strain, no_plastic_moments, false, M, S, K, f);
+    return true;
+  }
+
+
+
+  void
+  ConstitutiveUpdate::prepare_elastic_cells(const MaterialPoints &points,
+                                            const BackgroundGrid &grid,
+                                            ElasticCells         &cells) const
+  {
+    cells.clear();
+    if (point_kinematics != Kinematics::small_strain)
+      return;
+    cells.resize(grid.triangulation().n_active_cells());
+    const auto            &particles = points.particle_handler();
+    std::vector<PointView> views;
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned() && particles.n_particles_in_cell(cell) > 0)
+        {
+          gather_points(particles.particles_in_cell(cell),
+                        particles.n_particles_in_cell(cell),
+                        views);
+          cells[cell->active_cell_index()] = elastic_cell(views);
+        }
   }
 
 
@@ -907,7 +1038,8 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix                   &tangent,
     TrilinosWrappers::MPI::Vector                    &internal_force,
     CellScatter                                      &scatter,
-    const SupportBands                               *bands) const
+    const SupportBands                               *bands,
+    const ElasticCells                               *elastic_cells) const
   {
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
     const auto                          &particles = points.particle_handler();
@@ -941,6 +1073,30 @@ namespace bsmpm
       {
         if (!cell->is_locally_owned())
           continue;
+        const unsigned int index = cell->active_cell_index();
+        // A cell that stays elastic needs none of its points (outside a
+        // support's band, whose virtual points take the points' mean
+        // state).
+        if (elastic_cells != nullptr && !elastic_cells->empty() &&
+            (*elastic_cells)[index].reach > 0 &&
+            (bands == nullptr || (*bands)[index].empty()))
+          {
+            d = MaterialPoints::cell_increment(cell,
+                                               increment,
+                                               prescribed,
+                                               dof_indices);
+            if (elastic_cell_system(kernel,
+                                    (*elastic_cells)[index],
+                                    d,
+                                    cell_matrix,
+                                    cell_vector,
+                                    exact_moments ? &(*exact_moments)[index] :
+                                                    nullptr))
+              {
+                add_cell(index);
+                continue;
+              }
+          }
         // The points once (MaterialPoints::holds_material() would walk
         // them again).
         views.clear();
@@ -1032,9 +1188,6 @@ namespace bsmpm
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
     LinearAlgebra::distributed::Vector<double> diagonal_e(diagonal_a),
       off_a(diagonal_a), off_e(diagonal_a);
-    const Tensor<2, 4>          D_e = voigt_tangent(model.elastic_tangent());
-    std::array<Voigt, n>        B_block;
-    std::array<Tensor<1, 4>, n> B_bar_block;
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
       {
         if (!cell->is_locally_owned() ||
@@ -1055,6 +1208,9 @@ namespace bsmpm
                                exact_moments ?
                                  &(*exact_moments)[cell->active_cell_index()] :
                                  nullptr);
+        // The points' tangents as moments (cell_system()): H_ab of the
+        // points that yield, M_ab of those that do not, and of all.
+        double H[6][16] = {}, M_elastic[6] = {}, M_all[6] = {};
         for (auto &particle : cell_points)
           {
             const Point<2> st    = particle.get_reference_location();
@@ -1094,35 +1250,21 @@ namespace bsmpm
               }
             if (has_material && props[Property::volume] > 0.)
               {
-                const double w = quadrature_weights ? props[Property::weight] :
-                                                      props[Property::volume];
-                strain_columns(kernel, strain, st, B_block, B_bar_block);
+                const double w  = quadrature_weights ? props[Property::weight] :
+                                                       props[Property::volume];
+                const double ws = w * st[0], wt = w * st[1];
+                const double m[6] = {
+                  w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
                 // A point that does not yield has the elastic tangent
                 // (ConstitutiveResponse::yielded).
-                Tensor<2, 4> D = D_e;
-                if (yielded)
-                  for (unsigned int r = 0; r < 4; ++r)
-                    for (unsigned int c = 0; c < 4; ++c)
-                      D[r][c] = tangent[4 * r + c];
-                for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int q = 0; q < 6; ++q)
                   {
-                    const Tensor<1, 4> DB  = D * B_bar_block[i];
-                    const Tensor<1, 4> DeB = D_e * B_bar_block[i];
-                    diagonal_a(dof_indices[i]) += w * (B_bar_block[i] * DB);
-                    diagonal_e(dof_indices[i]) += w * (B_bar_block[i] * DeB);
-                    if (kernel.component(i) == 0)
-                      for (unsigned int j = 0; j < n; ++j)
-                        if (kernel.component(j) == 1 &&
-                            kernel.vertex(j) == kernel.vertex(i))
-                          {
-                            // The symmetric part (unsymmetric tangents).
-                            off_a(dof_indices[i]) +=
-                              w *
-                              (B_bar_block[j] * DB +
-                               B_bar_block[i] * (D * B_bar_block[j])) /
-                              2;
-                            off_e(dof_indices[i]) += w * (B_bar_block[j] * DeB);
-                          }
+                    M_all[q] += m[q];
+                    if (yielded)
+                      for (unsigned int k = 0; k < 16; ++k)
+                        H[q][k] += m[q] * tangent[k];
+                    else
+                      M_elastic[q] += m[q];
                   }
               }
             const auto &eps                     = state.elastic_strain;
@@ -1164,6 +1306,57 @@ namespace bsmpm
                 props[Property::strain + 1] = log_strain[1] / 2;
                 props[Property::strain + 2] = log_strain[2] / 2;
               }
+          }
+        if (!has_material)
+          continue;
+        // The vertices' 2 x 2 blocks from the moments: with the (B-bar)
+        // strain columns Bbar_i = sum_a m_a P_a,i, the block entry
+        // sum_p w_p Bbar_i^T D_p Bbar_j is sum_ab P_a,i^T (H_ab +
+        // M_ab D_e) P_b,j (its symmetric part for unsymmetric tangents).
+        // Where no point yields, H is zero and M_elastic is M_all, summed
+        // alike: the two blocks are then equal to the last bit.
+        static constexpr unsigned int              block[3][3] = {{0, 1, 2},
+                                                                  {1, 3, 4},
+                                                                  {2, 4, 5}};
+        const auto                                &P           = strain.columns;
+        std::array<std::array<Tensor<1, 4>, n>, 3> DP;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int i = 0; i < n; ++i)
+            DP[a][i] = elastic_voigt * P[a][i];
+        // The entry (i, j) of the points' tangent (a) and of the elastic
+        // one (e).
+        const auto entries = [&](const unsigned int i, const unsigned int j) {
+          double held = 0, elastic = 0;
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              {
+                const unsigned int q   = block[a][b];
+                const double       PP  = P[a][i] * DP[b][j];
+                double             PHP = 0;
+                for (unsigned int r = 0; r < 4; ++r)
+                  for (unsigned int c = 0; c < 4; ++c)
+                    PHP += P[a][i][r] * H[q][4 * r + c] * P[b][j][c];
+                held += PHP + M_elastic[q] * PP;
+                elastic += M_all[q] * PP;
+              }
+          return std::make_pair(held, elastic);
+        };
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto [held, elastic] = entries(i, i);
+            diagonal_a(dof_indices[i]) += held;
+            diagonal_e(dof_indices[i]) += elastic;
+            if (kernel.component(i) == 0)
+              for (unsigned int j = 0; j < n; ++j)
+                if (kernel.component(j) == 1 &&
+                    kernel.vertex(j) == kernel.vertex(i))
+                  {
+                    const auto [held_ij, elastic_ij] = entries(i, j);
+                    const auto [held_ji, elastic_ji] = entries(j, i);
+                    (void)elastic_ji;
+                    off_a(dof_indices[i]) += (held_ij + held_ji) / 2;
+                    off_e(dof_indices[i]) += elastic_ij;
+                  }
           }
       }
     for (auto *v : {&diagonal_a, &diagonal_e, &off_a, &off_e})

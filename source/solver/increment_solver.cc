@@ -65,6 +65,17 @@ namespace bsmpm
 
 
 
+  void
+  IncrementSolver::prepare_increment()
+  {
+    TimerOutput::Scope t(timer, "newton system");
+    parts.constitutive_update->prepare_elastic_cells(parts.points,
+                                                     parts.grid,
+                                                     elastic_cells);
+  }
+
+
+
   NewtonSolver::Result
   IncrementSolver::solve_newton(
     const double                                      delta,
@@ -86,6 +97,7 @@ namespace bsmpm
         &parts.contact->motion() :
         nullptr;
     Vector<double> last_motion_correction;
+    prepare_increment();
     // |(R, r_c)| of the system that newton_system() assembled.
     const auto with_bodies = [&](const double norm) {
       return motion == nullptr ?
@@ -131,8 +143,8 @@ namespace bsmpm
         }
       return norm;
     };
-    const double at_zero = remember(with_bodies(
-      assembly.newton_system(update, points, increment, prescribed)));
+    const double at_zero = remember(with_bodies(assembly.newton_system(
+      update, points, increment, prescribed, &elastic_cells)));
     largest_internal_force =
       std::max(largest_internal_force, assembly.internal_force_size());
     const double reference = std::max(at_zero, 1e-6 * largest_internal_force);
@@ -166,8 +178,8 @@ namespace bsmpm
         increment.add(1e-6 * delta / previous_delta, previous_increment);
         assembly.constraints().set_zero(increment);
         increment.update_ghost_values();
-        start_norm = remember(with_bodies(
-          assembly.newton_system(update, points, increment, prescribed)));
+        start_norm = remember(with_bodies(assembly.newton_system(
+          update, points, increment, prescribed, &elastic_cells)));
       }
     else if (has_last_increment)
       {
@@ -180,8 +192,8 @@ namespace bsmpm
         // displacement may still leave a larger one: only one ten times
         // larger than that of zero is dropped (cantilever in finite
         // strain: 26 times in step 3).
-        start_norm = remember(with_bodies(
-          assembly.newton_system(update, points, increment, prescribed)));
+        start_norm = remember(with_bodies(assembly.newton_system(
+          update, points, increment, prescribed, &elastic_cells)));
         if (!(start_norm < 10 * reference))
           {
             increment = 0;
@@ -190,8 +202,8 @@ namespace bsmpm
           }
       }
     const auto residual = [&]() {
-      return remember(with_bodies(
-        assembly.newton_system(update, points, increment, prescribed)));
+      return remember(with_bodies(assembly.newton_system(
+        update, points, increment, prescribed, &elastic_cells)));
     };
     const auto correct = [&]() {
       TimerOutput::Scope            t(timer, "solve");
@@ -334,7 +346,8 @@ namespace bsmpm
     parts.assembly.newton_system(*parts.constitutive_update,
                                  parts.points,
                                  increment,
-                                 prescribed);
+                                 prescribed,
+                                 &elastic_cells);
     // The scale: the stresses the residual balances, in this state or
     // earlier in the run (in the first step only this one's).
     const double scale =
@@ -364,6 +377,7 @@ namespace bsmpm
                   update.symmetric_tangent(),
                 ExcMessage("Loading/Control = displacement needs small strain "
                            "and a symmetric tangent."));
+    prepare_increment();
 
     const auto solve = [&](const TrilinosWrappers::MPI::Vector &rhs,
                            TrilinosWrappers::MPI::Vector       &solution) {
@@ -383,7 +397,8 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector residual, a, b, correction;
     double                        last_load_correction = 0;
     const auto                    evaluate             = [&]() {
-      assembly.newton_system(update, points, increment, nullptr);
+      assembly.newton_system(
+        update, points, increment, nullptr, &elastic_cells);
       residual = assembly.residual();
       residual.add(load_increment, loads);
       return residual.l2_norm();

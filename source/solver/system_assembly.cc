@@ -504,7 +504,8 @@ namespace bsmpm
     const ConstitutiveUpdate                         &update,
     const MaterialPoints                             &points,
     const LinearAlgebra::distributed::Vector<double> &increment,
-    const LinearAlgebra::distributed::Vector<double> *prescribed)
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const ConstitutiveUpdate::ElasticCells           *elastic_cells)
   {
     TimerOutput::Scope    t(timer, "newton system");
     const BackgroundGrid &grid = parts.grid;
@@ -545,7 +546,8 @@ namespace bsmpm
                       tangent_matrix,
                       internal_force,
                       tangent_scatter,
-                      support_bands.empty() ? nullptr : &support_bands);
+                      support_bands.empty() ? nullptr : &support_bands,
+                      elastic_cells);
     yielding = count.yielded;
     // Cells or support points that the increment inverts (finite strain)
     // are left out of the system: such an increment has no residual.

@@ -1288,6 +1288,210 @@ namespace
     deallog.pop();
   }
 
+
+  /**
+   * ConstitutiveModel::elastic_reach(): within it every trial strain
+   * responds elastically with the stress D_e : e, and just beyond it,
+   * along the gradient of the yield function in strain space, the step
+   * yields (the reach is the distance to the yield surface for von Mises
+   * and Drucker-Prager, not a loose bound).
+   */
+  void
+  test_elastic_reach(Random &random)
+  {
+    const LinearElasticModel      elastic(E, nu);
+    const VonMisesPlasticity      perfect(E, nu, 2e4, 0.);
+    const VonMisesPlasticity      hardening(E, nu, 2e4, 2e5);
+    const DruckerPragerPlasticity frictional(
+      E, nu, 1e4, 30 * degree, 10 * degree);
+    const DruckerPragerPlasticity cohesionless(
+      E, nu, 0., 35 * degree, 5 * degree);
+    const std::vector<std::pair<std::string, const ConstitutiveModel *>>
+      models = {{"linear elastic", &elastic},
+                {"von Mises, perfectly plastic", &perfect},
+                {"von Mises, hardening", &hardening},
+                {"Drucker-Prager phi 30", &frictional},
+                {"Drucker-Prager c 0, phi 35", &cohesionless}};
+    // A plane-strain strain tensor from (xx, yy, zz, xy).
+    const auto plane =
+      [](const double xx, const double yy, const double zz, const double xy) {
+        SymmetricTensor<2, 3> e;
+        e[0][0] = xx;
+        e[1][1] = yy;
+        e[2][2] = zz;
+        e[0][1] = xy;
+        return e;
+      };
+    for (const auto &[name, model] : models)
+      {
+        const SymmetricTensor<4, 3> D      = model->elastic_tangent();
+        unsigned int                inside = 0, elastic_inside = 0, beyond = 0,
+                     yields_beyond = 0, none = 0;
+        for (unsigned int c = 0; c < 200; ++c)
+          {
+            ConstitutiveState state;
+            // Compressed states round the yield surface (some of them
+            // outside it: no reach).
+            const double size    = 8e-3 * random();
+            state.elastic_strain = plane(-2e-3 + size * (random() - 0.5),
+                                         -2e-3 + size * (random() - 0.5),
+                                         -2e-3 + size * (random() - 0.5),
+                                         size * (random() - 0.5));
+            state.equivalent_plastic_strain = 0.01 * random();
+            const double reach              = model->elastic_reach(state);
+            if (!(reach > 0))
+              {
+                ++none;
+                continue;
+              }
+            // A random direction, scaled to just inside the reach.
+            SymmetricTensor<2, 3> u = plane(random() - 0.5,
+                                            random() - 0.5,
+                                            random() - 0.5,
+                                            random() - 0.5);
+            u /= u.norm();
+            const double length = std::isfinite(reach) ? 0.999 * reach : 1e-2;
+            ConstitutiveState trial = state;
+            trial.elastic_strain += length * u;
+            std::array<double, 4>       stress;
+            std::array<double, 16>      tangent;
+            const SymmetricTensor<2, 3> expected = D * trial.elastic_strain;
+            const SymmetricTensor<2, 3> e        = trial.elastic_strain;
+            const bool                  yielded =
+              model->plane_strain_update(trial, stress, tangent);
+            const double difference = std::abs(stress[0] - expected[0][0]) +
+                                      std::abs(stress[1] - expected[1][1]) +
+                                      std::abs(stress[2] - expected[2][2]) +
+                                      std::abs(stress[3] - expected[0][1]);
+            ++inside;
+            elastic_inside += !yielded &&
+                              difference <= 1e-12 * expected.norm() &&
+                              trial.elastic_strain == e;
+            if (!std::isfinite(reach))
+              continue;
+            // Along the yield function's gradient in strain space,
+            // sqrt(2) mu n + eta K 1 (eta = 0 for von Mises), a millionth
+            // beyond the reach.
+            const SymmetricTensor<2, 3> deviatoric =
+              deviator(state.elastic_strain);
+            if (deviatoric.norm() == 0.)
+              continue;
+            const auto *dp =
+              dynamic_cast<const DruckerPragerPlasticity *>(model);
+            const double          eta = dp != nullptr ? dp->eta() : 0.;
+            SymmetricTensor<2, 3> g =
+              std::sqrt(2.) * model->shear_modulus() * deviatoric /
+                deviatoric.norm() +
+              eta * model->bulk_modulus() * unit_symmetric_tensor<3>();
+            g /= g.norm();
+            ConstitutiveState outside = state;
+            outside.elastic_strain += (1 + 1e-6) * reach * g;
+            ++beyond;
+            yields_beyond +=
+              model->plane_strain_update(outside, stress, tangent);
+          }
+        deallog << "elastic reach, " << name << ": " << inside
+                << " states with a reach (" << none
+                << " without), a step within it elastic with D_e : e: "
+                << (elastic_inside == inside ? "yes" : "NO");
+        if (beyond > 0)
+          deallog << "; 1e-6 beyond it along the yield function's gradient "
+                     "yields: "
+                  << yields_beyond << " of " << beyond;
+        deallog << std::endl;
+      }
+  }
+
+
+
+  /**
+   * A cell whose points stay elastic (ConstitutiveUpdate::elastic_cell()
+   * and elastic_cell_system()): its system from the points' moments equals
+   * cell_system()'s point by point, and it is never taken where a point
+   * yields.
+   */
+  void
+  test_elastic_cells(Random &random)
+  {
+    const FESystem<2>  fe(FE_Q<2>(1), 2);
+    const Tensor<2, 3> C;
+    const Q1CellKernel kernel(fe, Tensor<1, 2>({0.7, 0.5}), C);
+    using Property = MaterialPoints::Property;
+    const LinearElasticModel      elastic(E, nu);
+    const VonMisesPlasticity      von_mises(E, nu, 2e4, 1e5);
+    const DruckerPragerPlasticity drucker_prager(
+      E, nu, 1e4, 30 * degree, 10 * degree);
+    const std::vector<std::pair<std::string, const ConstitutiveModel *>>
+      models = {{"linear elastic", &elastic},
+                {"von Mises", &von_mises},
+                {"Drucker-Prager", &drucker_prager}};
+    for (const auto &[name, model] : models)
+      for (const bool b_bar : {false, true})
+        {
+          ConstitutiveUpdate update(
+            *model, b_bar, ConstitutiveUpdate::Kinematics::small_strain);
+          unsigned int taken = 0, cells = 0, wrong = 0;
+          double       worst = 0;
+          for (unsigned int c = 0; c < 40; ++c)
+            {
+              // Six points, one a tracking point without volume; every
+              // other cell integrates with fitted weights.
+              std::vector<std::vector<double>> props(
+                6, std::vector<double>(Property::n_properties_inelastic));
+              std::vector<ConstitutiveUpdate::PointView> points;
+              for (unsigned int p = 0; p < props.size(); ++p)
+                {
+                  auto &q             = props[p];
+                  q[Property::volume] = p == 5 ? 0. : 0.05 + 0.02 * p;
+                  q[Property::weight] = (0.5 + random()) * q[Property::volume];
+                  for (unsigned int k = 0; k < 4; ++k)
+                    q[Property::elastic_strain + k] =
+                      (k < 3 ? -2e-3 : 0.) + 4e-4 * (random() - 0.5);
+                  q[Property::plastic_strain] = 0.01 * random();
+                  points.push_back(
+                    {Point<2>(0.2 + 0.6 * random(), 0.1 + 0.5 * random()),
+                     ArrayView<const double>(q.data(), q.size())});
+                }
+              std::vector<CellMoments> exact(1);
+              update.use_cut_cell_quadrature(c % 2 == 1 ? &exact : nullptr);
+              // Increments from far inside the elastic range to yielding.
+              const double              scale = 1e-5 * std::pow(4., c % 5);
+              Q1CellKernel::LocalVector d;
+              for (auto &x : d)
+                x = scale * (random() - 0.5);
+              FullMatrix<double> K(8, 8), K_moments(8, 8);
+              Vector<double>     f(8), f_moments(8);
+              const unsigned int yielded =
+                update.cell_system(kernel, points, d, K, f);
+              const ConstitutiveUpdate::ElasticCell cell =
+                update.elastic_cell(points);
+              ++cells;
+              if (!update.elastic_cell_system(
+                    kernel, cell, d, K_moments, f_moments))
+                continue;
+              ++taken;
+              wrong += yielded > 0;
+              const double largest_K = K.linfty_norm(),
+                           largest_f = f.linfty_norm();
+              for (unsigned int i = 0; i < 8; ++i)
+                {
+                  worst =
+                    std::max(worst, std::abs(f[i] - f_moments[i]) / largest_f);
+                  for (unsigned int j = 0; j < 8; ++j)
+                    worst =
+                      std::max(worst,
+                               std::abs(K(i, j) - K_moments(i, j)) / largest_K);
+                }
+            }
+          deallog << "elastic cells, " << name
+                  << (b_bar ? ", B-bar" : ", standard") << ": " << taken
+                  << " of " << cells
+                  << " cells from moments, = cell_system() (1e-12): "
+                  << (worst <= 1e-12 ? "yes" : "NO")
+                  << ", taken where a point yields: " << wrong << std::endl;
+        }
+  }
+
 } // namespace
 
 
@@ -1335,5 +1539,12 @@ main()
   Random plane_strain_random(13);
   deallog.push("returns");
   test_plane_strain_update(plane_strain_random);
+  deallog.pop();
+  Random reach_random(14);
+  deallog.push("returns");
+  test_elastic_reach(reach_random);
+  deallog.pop();
+  deallog.push("cell tangents");
+  test_elastic_cells(reach_random);
   deallog.pop();
 }

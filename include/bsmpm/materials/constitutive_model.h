@@ -97,6 +97,19 @@ namespace bsmpm
                         std::array<double, 4>  &stress,
                         std::array<double, 16> &tangent) const;
 
+    /**
+     * How far the trial elastic strain may move from that of @p state (in
+     * the norm of the strain tensor) with the step staying elastic: every
+     * trial strain e with |e - state.elastic_strain| < elastic_reach(state)
+     * has the stress elastic_tangent() : e and does not yield. A cell whose
+     * points all stay within their reach is then integrated from moments
+     * of their strains, without a return map per point (doc/newton.md,
+     * "Cells that stay elastic"). 0, the default, promises nothing;
+     * infinity for linear elasticity.
+     */
+    virtual double
+    elastic_reach(const ConstitutiveState &state) const;
+
     /** The stress of @p response as (xx, yy, zz, xy) and, if it yielded,
      * its tangent in Voigt form (plane_strain_update()). */
     static void

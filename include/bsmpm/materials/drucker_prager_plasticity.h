@@ -46,6 +46,9 @@ namespace bsmpm
     plane_strain_update(ConstitutiveState      &state,
                         std::array<double, 4>  &stress,
                         std::array<double, 16> &tangent) const override;
+
+    double
+    elastic_reach(const ConstitutiveState &state) const override;
     /** sqrt(J2) + eta p - xi c. */
     double
     yield_function(const SymmetricTensor<2, 3> &stress,

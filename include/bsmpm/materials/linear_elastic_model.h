@@ -28,6 +28,9 @@ namespace bsmpm
     update(ConstitutiveState &state) const override;
     SymmetricTensor<4, 3>
     elastic_tangent() const override;
+    /** Infinity: every step is elastic. */
+    double
+    elastic_reach(const ConstitutiveState &state) const override;
     bool
     is_linear() const override;
     std::string

@@ -176,6 +176,50 @@ namespace bsmpm
     };
 
     /**
+     * What a cell's points give once per load increment, so that the
+     * Newton systems of the increment need none of them while the cell
+     * stays elastic (small strain; doc/newton.md, "Cells that stay
+     * elastic"). With the strain increment of the cell affine,
+     * de(s, t) = E_0 + s E_s + t E_t, and every point elastic, the stress
+     * of point p is D_e (e_n,p + de_p) and the sums of cell_system() are
+     *
+     *   S_a = D_e (sum_p w_p m_a e_n,p + sum_b M_ab E_b),   H_ab = M_ab D_e,
+     *
+     * m = (1, s, t). Every point is elastic if the largest |de| over the
+     * box of the points' (s, t) stays below the smallest of their
+     * ConstitutiveModel::elastic_reach().
+     */
+    struct ElasticCell
+    {
+      /** The smallest elastic reach of the points with weight; 0: the
+       * cell takes the point-by-point path. */
+      double reach = 0;
+      /** The box of the points' reference coordinates: centre, half
+       * widths. */
+      Point<2> centre;
+      double   half_width_s = 0, half_width_t = 0;
+      /** M_ab = sum_p w_p m_a m_b, in the order of cell_system()'s H. */
+      std::array<double, 6> M = {};
+      /** sum_p w_p m_a e_n,p, the stored elastic strains (xx, yy, zz,
+       * engineering xy). */
+      std::array<Tensor<1, 4>, 3> strain_moments;
+      /** The points' volume and its first moments (B-bar's centroid). */
+      double v = 0, vs = 0, vt = 0;
+    };
+    /** By active_cell_index(). */
+    using ElasticCells = std::vector<ElasticCell>;
+
+    /**
+     * The ElasticCell of every locally owned cell, for the points as they
+     * are (call it at the start of each load increment: commit() and
+     * MaterialPoints::move() make them stale). Empty in finite strain.
+     */
+    void
+    prepare_elastic_cells(const MaterialPoints &points,
+                          const BackgroundGrid &grid,
+                          ElasticCells         &cells) const;
+
+    /**
      * Adds K_T to @p tangent and f_int to @p internal_force for the
      * increment @p increment (with ghost values) and, if given, the
      * prescribed nodal values @p prescribed, through @p constraints.
@@ -195,7 +239,8 @@ namespace bsmpm
              TrilinosWrappers::SparseMatrix                   &tangent,
              TrilinosWrappers::MPI::Vector                    &internal_force,
              CellScatter                                      &scatter,
-             const SupportBands *bands = nullptr) const;
+             const SupportBands                               *bands = nullptr,
+             const ElasticCells *elastic_cells = nullptr) const;
 
     /**
      * Stores the state at the end of the step in every point (tracking
@@ -287,6 +332,25 @@ namespace bsmpm
                 const CellMoments                   *exact_moments = nullptr,
                 const std::vector<SupportBandPoint> *band = nullptr) const;
 
+    /** The ElasticCell of the points @p cell_points of one cell (small
+     * strain). */
+    ElasticCell
+    elastic_cell(const std::vector<PointView> &cell_points) const;
+
+    /**
+     * cell_system() without the points, for a cell whose points all stay
+     * elastic under the local increment @p d (see ElasticCell): K and f
+     * (set) from @p cell's moments; false, and neither set, where that is
+     * not certain. Used by assemble(); public for the tests.
+     */
+    bool
+    elastic_cell_system(const Q1CellKernel              &kernel,
+                        const ElasticCell               &cell,
+                        const Q1CellKernel::LocalVector &d,
+                        FullMatrix<double>              &K,
+                        Vector<double>                  &f,
+                        const CellMoments *exact_moments = nullptr) const;
+
     /**
      * Finite strain at a point of a support (ImplicitBoundary's band,
      * NitscheBoundary's curve points; doc/finite-strain.md, "Supports in
@@ -323,12 +387,13 @@ namespace bsmpm
       std::array<Tensor<1, 2>, 8> centroid_gradients;
       /** F-bar: the increment inverts the cell at the centroid. */
       bool inverted = false;
-      /** Small strain: the (B-bar) strain columns (xx, yy, zz,
+      /** The small-strain (B-bar) strain columns (xx, yy, zz,
        * engineering xy) of the shape functions are affine in the cell,
        * column i at (s, t) being
-       * columns[0][i] + s columns[1][i] + t columns[2][i], and so is the
-       * strain increment of the cell's d, increment[0] + s increment[1] +
-       * t increment[2]. */
+       * columns[0][i] + s columns[1][i] + t columns[2][i] (in finite
+       * strain too: commit() weighs the vertices' stiffness with them),
+       * and, in small strain, so is the strain increment of the cell's d,
+       * increment[0] + s increment[1] + t increment[2]. */
       std::array<std::array<Tensor<1, 4>, 8>, 3> columns;
       std::array<Tensor<1, 4>, 3>                increment;
     };
@@ -341,6 +406,30 @@ namespace bsmpm
                 const std::vector<PointView>    &cell_points,
                 const Q1CellKernel::LocalVector &d,
                 const CellMoments               *exact_moments) const;
+
+    /** The same for the points' volume @p v and its first moments
+     * @p vs, @p vt. */
+    CellStrain
+    cell_strain(const Q1CellKernel              &kernel,
+                const double                     v,
+                const double                     vs,
+                const double                     vt,
+                const Q1CellKernel::LocalVector &d,
+                const CellMoments               *exact_moments) const;
+
+    /**
+     * Small strain: K and f (set) from the sums of cell_system(), H_ab of
+     * the points that yield (if @p plastic), the scalar moments M_ab of
+     * those that do not, and S_a of all.
+     */
+    void
+    system_from_moments(const CellStrain &strain,
+                        const double (&H)[6][16],
+                        const bool plastic,
+                        const double (&M)[6],
+                        const double (&S)[3][4],
+                        FullMatrix<double> &K,
+                        Vector<double>     &f) const;
 
     /** What the finite-strain kinematics give at one point. */
     struct FiniteStrainPoint
@@ -362,7 +451,9 @@ namespace bsmpm
      * volume. */
     void
     centroid_strain(const Q1CellKernel              &kernel,
-                    const std::vector<PointView>    &cell_points,
+                    const double                     v,
+                    const double                     vs,
+                    const double                     vt,
                     const Q1CellKernel::LocalVector &d,
                     const CellMoments               *exact_moments,
                     CellStrain                      &strain) const;
@@ -378,15 +469,6 @@ namespace bsmpm
                         const Q1CellKernel::LocalVector &d,
                         const Tensor<2, 2>              *gradient,
                         ConstitutiveState               &state) const;
-
-    /** Standard in-plane columns @p B and the (B-bar) strain columns
-     * (xx, yy, zz, engineering xy) @p B_bar at @p st. */
-    static void
-    strain_columns(const Q1CellKernel          &kernel,
-                   const CellStrain            &strain,
-                   const Point<2>              &st,
-                   std::array<Voigt, 8>        &B,
-                   std::array<Tensor<1, 4>, 8> &B_bar);
 
     /** The (B-bar) strain increment (xx, yy, zz, engineering xy) at
      * @p st of the local increment that @p strain was made for (small
@@ -418,8 +500,10 @@ namespace bsmpm
 
     const ConstitutiveModel &model;
     const bool               b_bar;
-    const Kinematics         point_kinematics;
-    bool                     quadrature_weights = false;
+    /** The model's elastic tangent in Voigt form (voigt_tangent()). */
+    const Tensor<2, 4> elastic_voigt;
+    const Kinematics   point_kinematics;
+    bool               quadrature_weights = false;
     /** See use_cut_cell_quadrature(). */
     const std::vector<CellMoments> *exact_moments = nullptr;
     Tensor<1, 2>                    body_force;

@@ -171,6 +171,14 @@ namespace bsmpm
     LinearAlgebra::distributed::Vector<double> best_increment;
     Vector<double>                             best_places;
     double best_norm = std::numeric_limits<double>::infinity();
+    /** The moments of the cells whose points may stay elastic, for the
+     * points of the increment being solved (prepare_increment()). */
+    ConstitutiveUpdate::ElasticCells elastic_cells;
+
+    /** What the Newton systems of an increment share: the points' moments
+     * of prepare_elastic_cells(). */
+    void
+    prepare_increment();
   };
 } // namespace bsmpm
 

@@ -118,13 +118,17 @@ namespace bsmpm
      * Returns |R|, or infinity if the increment inverts a material point
      * or a support's point (finite strain; those cells and points are left
      * out of the system, which holds no NaN): an inadmissible iterate,
-     * from which the line search backs away.
+     * from which the line search backs away. With @p elastic_cells (from
+     * ConstitutiveUpdate::prepare_elastic_cells() for these points), the
+     * cells that stay elastic take their moments instead of their points.
      */
     double
-    newton_system(const ConstitutiveUpdate                         &update,
-                  const MaterialPoints                             &points,
-                  const LinearAlgebra::distributed::Vector<double> &increment,
-                  const LinearAlgebra::distributed::Vector<double> *prescribed);
+    newton_system(
+      const ConstitutiveUpdate                         &update,
+      const MaterialPoints                             &points,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      const ConstitutiveUpdate::ElasticCells *elastic_cells = nullptr);
 
     const TrilinosWrappers::SparseMatrix &
     tangent() const
