@@ -178,9 +178,14 @@ namespace bsmpm
     // the yield strain is kept back for the round-off of the two sides.
     const double yield_strain =
       (sigma_y + H * state.equivalent_plastic_strain) / (std::sqrt(6.) * mu);
-    return std::max(0.,
-                    (1. - 1e-12) * yield_strain -
-                      deviator(state.elastic_strain).norm());
+    // |dev e| on the four plane-strain components (xz = yz = 0).
+    const SymmetricTensor<2, 3> &e    = state.elastic_strain;
+    const double                 mean = (e[0][0] + e[1][1] + e[2][2]) / 3;
+    const double                 e_xx = e[0][0] - mean, e_yy = e[1][1] - mean,
+                 e_zz = e[2][2] - mean, e_xy = e[0][1];
+    const double norm =
+      std::sqrt(e_xx * e_xx + e_yy * e_yy + e_zz * e_zz + 2. * e_xy * e_xy);
+    return std::max(0., (1. - 1e-12) * yield_strain - norm);
   }
 
 

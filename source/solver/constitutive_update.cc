@@ -913,6 +913,7 @@ namespace bsmpm
   {
     ElasticCell       cell;
     ConstitutiveState state;
+    double            strain_moments[3][4] = {};
     double            reach = std::numeric_limits<double>::infinity();
     double            s_min = 1, s_max = 0, t_min = 1, t_max = 0;
     for (const auto &point : cell_points)
@@ -925,7 +926,10 @@ namespace bsmpm
         const double w = integration_weight(props);
         if (w == 0.)
           continue;
-        state.elastic_strain            = stored_elastic_strain(props);
+        state.elastic_strain[0][0]      = props[Property::elastic_strain];
+        state.elastic_strain[1][1]      = props[Property::elastic_strain + 1];
+        state.elastic_strain[2][2]      = props[Property::elastic_strain + 2];
+        state.elastic_strain[0][1]      = props[Property::elastic_strain + 3];
         state.equivalent_plastic_strain = props[Property::plastic_strain];
         reach              = std::min(reach, model.elastic_reach(state));
         const Point<2> &st = point.st;
@@ -937,16 +941,20 @@ namespace bsmpm
         const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
         for (unsigned int q = 0; q < 6; ++q)
           cell.M[q] += m[q];
-        const Tensor<1, 4> e({props[Property::elastic_strain],
-                              props[Property::elastic_strain + 1],
-                              props[Property::elastic_strain + 2],
-                              2 * props[Property::elastic_strain + 3]});
+        const double e[4] = {props[Property::elastic_strain],
+                             props[Property::elastic_strain + 1],
+                             props[Property::elastic_strain + 2],
+                             2 * props[Property::elastic_strain + 3]};
         for (unsigned int a = 0; a < 3; ++a)
-          cell.strain_moments[a] += m[a] * e;
+          for (unsigned int r = 0; r < 4; ++r)
+            strain_moments[a][r] += m[a] * e[r];
       }
     // No point with weight: the cell is left to the point-by-point path.
     if (s_min > s_max)
       return ElasticCell();
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int r = 0; r < 4; ++r)
+        cell.strain_moments[a][r] = strain_moments[a][r];
     cell.reach        = reach;
     cell.centre       = Point<2>((s_min + s_max) / 2, (t_min + t_max) / 2);
     cell.half_width_s = (s_max - s_min) / 2;
@@ -1211,6 +1219,10 @@ namespace bsmpm
         // The points' tangents as moments (cell_system()): H_ab of the
         // points that yield, M_ab of those that do not, and of all.
         double H[6][16] = {}, M_elastic[6] = {}, M_all[6] = {};
+        bool   plastic = false;
+        // grad u is affine in the cell: its three parts once.
+        const std::array<Tensor<2, 2>, 3> gradient =
+          kernel.gradient_coefficients(d);
         for (auto &particle : cell_points)
           {
             const Point<2> st    = particle.get_reference_location();
@@ -1218,9 +1230,10 @@ namespace bsmpm
             // Tracking points on the face of a cell without material take
             // the field of the neighbour that holds material.
             const Tensor<2, 2> grad =
-              has_material ? kernel.gradient(d, st) :
-                             points.boundary_gradient(
-                               kernel, cell, st, increment, prescribed);
+              has_material ?
+                gradient[0] + st[0] * gradient[1] + st[1] * gradient[2] :
+                points.boundary_gradient(
+                  kernel, cell, st, increment, prescribed);
             const Tensor<2, 2>     F_n = stored_deformation_gradient(props);
             std::array<double, 4>  stress;
             std::array<double, 16> tangent;
@@ -1257,6 +1270,7 @@ namespace bsmpm
                   w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
                 // A point that does not yield has the elastic tangent
                 // (ConstitutiveResponse::yielded).
+                plastic = plastic || yielded;
                 for (unsigned int q = 0; q < 6; ++q)
                   {
                     M_all[q] += m[q];
@@ -1333,9 +1347,10 @@ namespace bsmpm
                 const unsigned int q   = block[a][b];
                 const double       PP  = P[a][i] * DP[b][j];
                 double             PHP = 0;
-                for (unsigned int r = 0; r < 4; ++r)
-                  for (unsigned int c = 0; c < 4; ++c)
-                    PHP += P[a][i][r] * H[q][4 * r + c] * P[b][j][c];
+                if (plastic)
+                  for (unsigned int r = 0; r < 4; ++r)
+                    for (unsigned int c = 0; c < 4; ++c)
+                      PHP += P[a][i][r] * H[q][4 * r + c] * P[b][j][c];
                 held += PHP + M_elastic[q] * PP;
                 elastic += M_all[q] * PP;
               }

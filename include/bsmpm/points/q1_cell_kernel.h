@@ -226,6 +226,36 @@ namespace bsmpm
     std::array<Voigt, 3>
     strain_coefficients(const LocalVector &d) const;
 
+    /**
+     * The gradient of the local displacements @p d is affine in the cell
+     * too: grad u(s, t) = g[0] + s g[1] + t g[2] (row = component).
+     * Returns g: what a loop over many points of the cell takes once.
+     */
+    std::array<Tensor<2, 2>, 3>
+    gradient_coefficients(const LocalVector &d) const
+    {
+      std::array<Tensor<2, 2>, 3> g;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const std::array<Voigt, 3> parts = strain_column_parts(i);
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              const Voigt &b = parts[a];
+              if (dof_component[i] == 0)
+                {
+                  g[a][0][0] += d[i] * b[0];
+                  g[a][0][1] += d[i] * b[2];
+                }
+              else
+                {
+                  g[a][1][0] += d[i] * b[2];
+                  g[a][1][1] += d[i] * b[1];
+                }
+            }
+        }
+      return g;
+    }
+
     /** Gradient (row = component) of the local displacements @p d at
      * @p st. */
     Tensor<2, 2>
