@@ -533,10 +533,8 @@ namespace bsmpm
     std::array<Tensor<1, 2>, n> tau_g;
     ConstitutiveState           state;
     unsigned int                n_yielded = 0;
-    const bool                  symmetric =
-      point_kinematics == Kinematics::small_strain && model.symmetric_tangent();
-    K = 0;
-    f = 0;
+    K                                     = 0;
+    f                                     = 0;
     // An inverted point has no stress: f NaN, which assemble() leaves out
     // (element by element: in Debug, Vector's operator= refuses a NaN).
     const auto mark_inverted = [&f]() {
@@ -720,11 +718,7 @@ namespace bsmpm
         for (unsigned int q = 0; q < rule.size(); ++q)
           // The point yields if its state yields at the first of them.
           if (!add_point(rule[q], single->props, exact_moments->v / 4, q == 0))
-            return n_yielded;
-        if (symmetric)
-          for (unsigned int i = 0; i < n; ++i)
-            for (unsigned int j = 0; j < i; ++j)
-              K(i, j) = K(j, i);
+            break;
         return n_yielded;
       }
 
@@ -830,15 +824,10 @@ namespace bsmpm
           }
       }
 
+    // Small strain: K and f from the sums; finite strain summed them point
+    // by point (its tangent is not symmetric in general).
     if (small)
-      {
-        system_from_moments(strain, H, plastic, M, S, K, f);
-        return n_yielded;
-      }
-    if (symmetric)
-      for (unsigned int i = 0; i < n; ++i)
-        for (unsigned int j = 0; j < i; ++j)
-          K(i, j) = K(j, i);
+      system_from_moments(strain, H, plastic, M, S, K, f);
     return n_yielded;
   }
 
