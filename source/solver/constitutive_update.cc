@@ -152,6 +152,24 @@ namespace bsmpm
       return rule;
     }
 
+    /**
+     * The weighted moments w m_a m_b of a point at @p st, m = (1, s, t), in
+     * the order of the sums H_ab and M_ab of ConstitutiveUpdate::
+     * cell_system(): (1, 1), (1, s), (1, t), (s, s), (s, t), (t, t); the
+     * first three are also w m_a.
+     */
+    std::array<double, 6>
+    point_moments(const double w, const Point<2> &st)
+    {
+      const double ws = w * st[0], wt = w * st[1];
+      return {{w, ws, wt, ws * st[0], ws * st[1], wt * st[1]}};
+    }
+
+    /** Where H_ab and M_ab (a, b in 1, s, t) are stored, by a and b. */
+    constexpr unsigned int moment_index[3][3] = {{0, 1, 2},
+                                                 {1, 3, 4},
+                                                 {2, 4, 5}};
+
     const auto log_of     = [](const double x) { return std::log(x); };
     const auto inverse_of = [](const double x) { return 1. / x; };
     const auto exp_of     = [](const double x) { return std::exp(x); };
@@ -576,8 +594,7 @@ namespace bsmpm
                               const double                 w,
                               const std::array<double, 4> &sigma,
                               const bool                   yielded) {
-      const double ws = w * st[0], wt = w * st[1];
-      const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+      const std::array<double, 6> m = point_moments(w, st);
       for (unsigned int a = 0; a < 3; ++a)
         for (unsigned int r = 0; r < 4; ++r)
           S[a][r] += m[a] * sigma[r];
@@ -848,24 +865,21 @@ namespace bsmpm
     // G_a,j = sum_b (H_ab P_b,j + M_ab D_e P_b,j),
     // K_ij = sum_a P_a,i^T G_a,j; for a symmetric tangent the upper
     // triangle, mirrored below.
-    static constexpr unsigned int block[3][3] = {{0, 1, 2},
-                                                 {1, 3, 4},
-                                                 {2, 4, 5}};
-    const auto                   &P           = strain.columns;
-    double                        G[3][n][4]  = {};
+    const auto &P          = strain.columns;
+    double      G[3][n][4] = {};
     for (unsigned int b = 0; b < 3; ++b)
       for (unsigned int j = 0; j < n; ++j)
         {
           const Tensor<1, 4> DP = elastic_voigt * P[b][j];
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int r = 0; r < 4; ++r)
-              G[a][j][r] += M[block[a][b]] * DP[r];
+              G[a][j][r] += M[moment_index[a][b]] * DP[r];
         }
     if (plastic)
       for (unsigned int a = 0; a < 3; ++a)
         for (unsigned int b = 0; b < 3; ++b)
           {
-            const double *h = H[block[a][b]];
+            const double *h = H[moment_index[a][b]];
             for (unsigned int j = 0; j < n; ++j)
               for (unsigned int r = 0; r < 4; ++r)
                 G[a][j][r] +=
@@ -902,7 +916,6 @@ namespace bsmpm
   {
     ElasticCell       cell;
     ConstitutiveState state;
-    double            strain_moments[3][4] = {};
     double            reach = std::numeric_limits<double>::infinity();
     double            s_min = 1, s_max = 0, t_min = 1, t_max = 0;
     for (const auto &point : cell_points)
@@ -926,8 +939,7 @@ namespace bsmpm
         s_max              = std::max(s_max, st[0]);
         t_min              = std::min(t_min, st[1]);
         t_max              = std::max(t_max, st[1]);
-        const double ws = w * st[0], wt = w * st[1];
-        const double m[6] = {w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+        const std::array<double, 6> m = point_moments(w, st);
         for (unsigned int q = 0; q < 6; ++q)
           cell.M[q] += m[q];
         const double e[4] = {props[Property::elastic_strain],
@@ -936,14 +948,11 @@ namespace bsmpm
                              2 * props[Property::elastic_strain + 3]};
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int r = 0; r < 4; ++r)
-            strain_moments[a][r] += m[a] * e[r];
+            cell.strain_moments[a][r] += m[a] * e[r];
       }
     // No point with weight: the cell is left to the point-by-point path.
     if (s_min > s_max)
       return ElasticCell();
-    for (unsigned int a = 0; a < 3; ++a)
-      for (unsigned int r = 0; r < 4; ++r)
-        cell.strain_moments[a][r] = strain_moments[a][r];
     cell.reach        = reach;
     cell.centre       = Point<2>((s_min + s_max) / 2, (t_min + t_max) / 2);
     cell.half_width_s = (s_max - s_min) / 2;
@@ -979,23 +988,20 @@ namespace bsmpm
     if (!(largest < cell.reach))
       return false;
     // S_a = D_e (sum_p w m_a e_n,p + sum_b M_ab E_b); H_ab = M_ab D_e.
-    static constexpr unsigned int block[3][3] = {{0, 1, 2},
-                                                 {1, 3, 4},
-                                                 {2, 4, 5}};
-    double                        S[3][4];
+    double S[3][4];
     for (unsigned int a = 0; a < 3; ++a)
       {
-        Tensor<1, 4> e = cell.strain_moments[a];
+        Tensor<1, 4> e;
+        for (unsigned int r = 0; r < 4; ++r)
+          e[r] = cell.strain_moments[a][r];
         for (unsigned int b = 0; b < 3; ++b)
-          e += cell.M[block[a][b]] * E[b];
+          e += cell.M[moment_index[a][b]] * E[b];
         const Tensor<1, 4> sigma = elastic_voigt * e;
         for (unsigned int r = 0; r < 4; ++r)
           S[a][r] = sigma[r];
       }
     static constexpr double no_plastic_moments[6][16] = {};
-    double                  M[6];
-    std::copy(cell.M.begin(), cell.M.end(), M);
-    system_from_moments(strain, no_plastic_moments, false, M, S, K, f);
+    system_from_moments(strain, no_plastic_moments, false, cell.M, S, K, f);
     return true;
   }
 
@@ -1252,11 +1258,9 @@ namespace bsmpm
               }
             if (has_material && props[Property::volume] > 0.)
               {
-                const double w  = quadrature_weights ? props[Property::weight] :
-                                                       props[Property::volume];
-                const double ws = w * st[0], wt = w * st[1];
-                const double m[6] = {
-                  w, ws, wt, ws * st[0], ws * st[1], wt * st[1]};
+                const double w = quadrature_weights ? props[Property::weight] :
+                                                      props[Property::volume];
+                const std::array<double, 6> m = point_moments(w, st);
                 // A point that does not yield has the elastic tangent
                 // (ConstitutiveResponse::yielded).
                 plastic = plastic || yielded;
@@ -1318,10 +1322,7 @@ namespace bsmpm
         // M_ab D_e) P_b,j (its symmetric part for unsymmetric tangents).
         // Where no point yields, H is zero and M_elastic is M_all, summed
         // alike: the two blocks are then equal to the last bit.
-        static constexpr unsigned int              block[3][3] = {{0, 1, 2},
-                                                                  {1, 3, 4},
-                                                                  {2, 4, 5}};
-        const auto                                &P           = strain.columns;
+        const auto                                &P = strain.columns;
         std::array<std::array<Tensor<1, 4>, n>, 3> DP;
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int i = 0; i < n; ++i)
@@ -1333,7 +1334,7 @@ namespace bsmpm
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int b = 0; b < 3; ++b)
               {
-                const unsigned int q   = block[a][b];
+                const unsigned int q   = moment_index[a][b];
                 const double       PP  = P[a][i] * DP[b][j];
                 double             PHP = 0;
                 if (plastic)
@@ -1356,9 +1357,9 @@ namespace bsmpm
                     kernel.vertex(j) == kernel.vertex(i))
                   {
                     const auto [held_ij, elastic_ij] = entries(i, j);
-                    const auto [held_ji, elastic_ji] = entries(j, i);
-                    (void)elastic_ji;
-                    off_a(dof_indices[i]) += (held_ij + held_ji) / 2;
+                    // The symmetric part (unsymmetric tangents).
+                    off_a(dof_indices[i]) +=
+                      (held_ij + entries(j, i).first) / 2;
                     off_e(dof_indices[i]) += elastic_ij;
                   }
           }

@@ -199,10 +199,10 @@ namespace bsmpm
       Point<2> centre;
       double   half_width_s = 0, half_width_t = 0;
       /** M_ab = sum_p w_p m_a m_b, in the order of cell_system()'s H. */
-      std::array<double, 6> M = {};
+      double M[6] = {};
       /** sum_p w_p m_a e_n,p, the stored elastic strains (xx, yy, zz,
        * engineering xy). */
-      std::array<Tensor<1, 4>, 3> strain_moments;
+      double strain_moments[3][4] = {};
       /** The points' volume and its first moments (B-bar's centroid). */
       double v = 0, vs = 0, vt = 0;
     };
