@@ -298,25 +298,18 @@ namespace bsmpm
                                   const Q1CellKernel::LocalVector &d,
                                   const CellMoments *exact_moments) const
   {
-    double v = 0, vs = 0, vt = 0;
+    VolumeMoments volume;
     if (b_bar)
       for (const auto &point : cell_points)
-        {
-          const double volume = point.props[Property::volume];
-          v += volume;
-          vs += volume * point.st[0];
-          vt += volume * point.st[1];
-        }
-    return cell_strain(kernel, v, vs, vt, d, exact_moments);
+        volume.add(point.st, point.props[Property::volume]);
+    return cell_strain(kernel, volume, d, exact_moments);
   }
 
 
 
   ConstitutiveUpdate::CellStrain
   ConstitutiveUpdate::cell_strain(const Q1CellKernel              &kernel,
-                                  const double                     v,
-                                  const double                     vs,
-                                  const double                     vt,
+                                  const VolumeMoments             &volume,
                                   const Q1CellKernel::LocalVector &d,
                                   const CellMoments *exact_moments) const
   {
@@ -324,7 +317,7 @@ namespace bsmpm
     strain.coefficients = kernel.strain_coefficients(d);
     strain.use_b_bar    = false;
     if (b_bar)
-      centroid_strain(kernel, v, vs, vt, d, exact_moments, strain);
+      centroid_strain(kernel, volume, d, exact_moments, strain);
     // B-bar columns: B_i + (theta_i(centroid) - theta_i(s, t)) / 3
     // (1, 1, 1, 0), each part affine in (s, t).
     for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
@@ -357,19 +350,17 @@ namespace bsmpm
 
   void
   ConstitutiveUpdate::centroid_strain(const Q1CellKernel              &kernel,
-                                      const double                     v,
-                                      const double                     vs,
-                                      const double                     vt,
+                                      const VolumeMoments             &volume,
                                       const Q1CellKernel::LocalVector &d,
                                       const CellMoments *exact_moments,
                                       CellStrain        &strain) const
   {
     // The volumetric strain of Q1 is affine in the cell, so its mean over
     // the points is its value at their volume-weighted centroid.
-    if (v == 0.)
+    if (volume.v == 0.)
       return;
     strain.use_b_bar = true;
-    strain.centroid  = Point<2>(vs / v, vt / v);
+    strain.centroid  = Point<2>(volume.vs / volume.v, volume.vt / volume.v);
     // With the cut-cell quadrature the cell is integrated over its exact
     // part in the body (the points' fitted weights, completed by
     // cell_system()): the mean is that of the exact centroid, so that the
@@ -920,11 +911,8 @@ namespace bsmpm
     double            s_min = 1, s_max = 0, t_min = 1, t_max = 0;
     for (const auto &point : cell_points)
       {
-        const auto  &props  = point.props;
-        const double volume = props[Property::volume];
-        cell.v += volume;
-        cell.vs += volume * point.st[0];
-        cell.vt += volume * point.st[1];
+        const auto &props = point.props;
+        cell.volume.add(point.st, props[Property::volume]);
         const double w = integration_weight(props);
         if (w == 0.)
           continue;
@@ -974,7 +962,7 @@ namespace bsmpm
     if (!(cell.reach > 0) || point_kinematics != Kinematics::small_strain)
       return false;
     const CellStrain strain =
-      cell_strain(kernel, cell.v, cell.vs, cell.vt, d, exact_moments);
+      cell_strain(kernel, cell.volume, d, exact_moments);
     // The norm of a strain tensor from its (xx, yy, zz, engineering xy).
     const auto norm = [](const Tensor<1, 4> &e) {
       return std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] +

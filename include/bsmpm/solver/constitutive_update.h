@@ -175,6 +175,21 @@ namespace bsmpm
       unsigned long long inverted_cells = 0;
     };
 
+    /** The points' volume and its first moments in a cell: where B-bar
+     * takes the cell's mean volumetric strain (their centroid). */
+    struct VolumeMoments
+    {
+      double v = 0, vs = 0, vt = 0;
+
+      void
+      add(const Point<2> &st, const double volume)
+      {
+        v += volume;
+        vs += volume * st[0];
+        vt += volume * st[1];
+      }
+    };
+
     /**
      * What a cell's points give once per load increment, so that the
      * Newton systems of the increment need none of them while the cell
@@ -203,8 +218,8 @@ namespace bsmpm
       /** sum_p w_p m_a e_n,p, the stored elastic strains (xx, yy, zz,
        * engineering xy). */
       double strain_moments[3][4] = {};
-      /** The points' volume and its first moments (B-bar's centroid). */
-      double v = 0, vs = 0, vt = 0;
+      /** B-bar's centroid. */
+      VolumeMoments volume;
     };
     /** By active_cell_index(). */
     using ElasticCells = std::vector<ElasticCell>;
@@ -407,13 +422,10 @@ namespace bsmpm
                 const Q1CellKernel::LocalVector &d,
                 const CellMoments               *exact_moments) const;
 
-    /** The same for the points' volume @p v and its first moments
-     * @p vs, @p vt. */
+    /** The same for the points' volume moments @p volume. */
     CellStrain
     cell_strain(const Q1CellKernel              &kernel,
-                const double                     v,
-                const double                     vs,
-                const double                     vt,
+                const VolumeMoments             &volume,
                 const Q1CellKernel::LocalVector &d,
                 const CellMoments               *exact_moments) const;
 
@@ -451,9 +463,7 @@ namespace bsmpm
      * volume. */
     void
     centroid_strain(const Q1CellKernel              &kernel,
-                    const double                     v,
-                    const double                     vs,
-                    const double                     vt,
+                    const VolumeMoments             &volume,
                     const Q1CellKernel::LocalVector &d,
                     const CellMoments               *exact_moments,
                     CellStrain                      &strain) const;
