@@ -260,7 +260,8 @@ namespace bsmpm
   LinearSolver::solve_direct(const TrilinosWrappers::SparseMatrix &matrix,
                              TrilinosWrappers::MPI::Vector        &solution,
                              const TrilinosWrappers::MPI::Vector  &rhs,
-                             const bool symmetric) const
+                             const bool                            symmetric,
+                             const double accuracy) const
   {
     Report                  report;
     const double            rhs_norm  = rhs.l2_norm();
@@ -345,7 +346,8 @@ namespace bsmpm
         matrix.vmult(residual, solution);
         residual.sadd(-1., 1., rhs);
         const double norm = residual.l2_norm();
-        if (norm >= 0.5 * previous || norm <= 1e-15 * rhs_norm)
+        if (norm >= 0.5 * previous ||
+            norm <= std::max(accuracy, 1e-15) * rhs_norm)
           break;
         previous = norm;
         AssertThrow(direct.solve(correction, residual),
@@ -704,7 +706,8 @@ namespace bsmpm
                       TrilinosWrappers::MPI::Vector        &solution,
                       const TrilinosWrappers::MPI::Vector  &rhs,
                       const DoFHandler<2>                  &dof_handler,
-                      const bool                            symmetric) const
+                      const bool                            symmetric,
+                      const double                          accuracy) const
   {
     if (rhs.l2_norm() == 0.)
       {
@@ -720,7 +723,8 @@ namespace bsmpm
        (matrix.m() <= automatic_threshold || cg_failed || cg_slow));
     if (use_direct)
       {
-        Report report = solve_direct(matrix, solution, rhs, symmetric);
+        Report report =
+          solve_direct(matrix, solution, rhs, symmetric, accuracy);
         if (cg_slow && !cg_slow_said && !cg_failed)
           {
             report.method += ", cg slow";
@@ -772,12 +776,13 @@ namespace bsmpm
             gmg_failed           = true;
             gmg_failed_matrix    = &matrix.trilinos_matrix();
             gmg_failed_structure = matrix_structure(matrix);
-            return solve(matrix, solution, rhs, dof_handler, symmetric);
+            return solve(
+              matrix, solution, rhs, dof_handler, symmetric, accuracy);
           }
       }
     // Factorise, now and in the following load steps.
     cg_failed     = true;
-    Report direct = solve_direct(matrix, solution, rhs, symmetric);
+    Report direct = solve_direct(matrix, solution, rhs, symmetric, accuracy);
     direct.method += ", cg failed";
     return direct;
   }

@@ -145,6 +145,14 @@ namespace bsmpm
       return start;
     }
 
+    /** Converged when |R| is below this fraction of the increment's
+     * scale (Nonlinear solver/Residual tolerance). */
+    double
+    residual_tolerance() const
+    {
+      return tolerance;
+    }
+
     /** How many times a load increment may be halved. */
     unsigned int
     max_step_cuts() const
