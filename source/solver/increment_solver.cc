@@ -165,16 +165,17 @@ namespace bsmpm
         assembly.constraints().set_zero(increment);
         increment.update_ghost_values();
       }
-    // |R(0)|; with the tangent predictor |R| at its vanishing step, which
-    // differs from it by a millionth of the increment's force: one system
-    // is the scale and the start (one Newton system less per increment).
-    const double at_zero = remember(with_bodies(assembly.newton_system(
+    // The tolerance's scale, |R(0)|; with the tangent predictor |R| at its
+    // vanishing step, which differs from it by a millionth of the
+    // increment's force: one system is the scale and the start (one Newton
+    // system less per increment).
+    const double at_start = remember(with_bodies(assembly.newton_system(
       update, points, increment, prescribed, &elastic_cells)));
     largest_internal_force =
       std::max(largest_internal_force, assembly.internal_force_size());
-    const double reference = std::max(at_zero, 1e-6 * largest_internal_force);
+    const double reference = std::max(at_start, 1e-6 * largest_internal_force);
     // |R| of the system the assembly holds, that of the start.
-    double start_norm = at_zero;
+    double start_norm = at_start;
     // The tangent predictor keeps force-controlled bodies where the last
     // increment left them (its first correction moves them with the
     // grid); the scaled last increment moves them as it moves the grid.

@@ -139,7 +139,9 @@ namespace bsmpm
                       Patterns::Integer(0),
                       "direct: at most this many steps of iterative "
                       "refinement with the same factors, while each halves "
-                      "the residual at least.");
+                      "the residual at least (a Newton correction's only "
+                      "while its residual is above a thousandth of the "
+                      "Newton tolerance's force).");
     prm.leave_subsection();
   }
 
