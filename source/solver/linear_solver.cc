@@ -114,13 +114,14 @@ namespace bsmpm
       "Automatic iteration limit",
       "50",
       Patterns::Integer(0),
-      "automatic: a CG (GMRES) solve that needs more than this many "
-      "iterations makes the later solves of the run direct, up to a million "
-      "unknowns (the step table says 'cg slow' once). In two dimensions "
-      "a factorisation costs about 25 multigrid-preconditioned CG "
-      "iterations at 25 k unknowns and 50 at 100 k (measured on plastic "
-      "footings, doc/benchmarks.md): the nearly singular tangents of "
-      "yielding material need hundreds. 0: never.");
+      "automatic: a CG (GMRES) solve of 100 k unknowns that needs more "
+      "than this many iterations makes the later solves of the run direct, "
+      "up to a million unknowns (the step table says 'cg slow' once); for "
+      "n unknowns the limit is scaled by sqrt(n / 100 k), and not below "
+      "half of it. In two dimensions a factorisation costs about 25 "
+      "multigrid-preconditioned CG iterations at 25 k unknowns and 50 at "
+      "100 k (measured on plastic footings, doc/benchmarks.md): the nearly "
+      "singular tangents of yielding material need hundreds. 0: never.");
     prm.declare_entry("Estimate condition number",
                       "false",
                       Patterns::Bool(),
@@ -703,6 +704,22 @@ namespace bsmpm
 
 
 
+  unsigned int
+  LinearSolver::iteration_limit(const types::global_dof_index n) const
+  {
+    // A 2D factorisation costs about n^1.5, a CG iteration about n: the
+    // number of iterations a factorisation is worth grows as sqrt(n).
+    // Not below half the limit: at a few thousand unknowns MUMPS' fixed
+    // costs weigh (AMG was 1.2x faster than MUMPS at 1250 unknowns with
+    // about 8 iterations, 'Automatic threshold').
+    const double scaled =
+      automatic_iteration_limit * std::sqrt(static_cast<double>(n) / 1e5);
+    return static_cast<unsigned int>(
+      std::max(scaled, static_cast<double>(automatic_iteration_limit) / 2));
+  }
+
+
+
   LinearSolver::Report
   LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                       TrilinosWrappers::MPI::Vector        &solution,
@@ -760,7 +777,7 @@ namespace bsmpm
         // A factorisation is the cheaper solve of such tangents (see the
         // parameter); the same on every process, as the count is.
         if (method == Method::automatic && automatic_iteration_limit > 0 &&
-            report.iterations > automatic_iteration_limit &&
+            report.iterations > iteration_limit(matrix.m()) &&
             matrix.m() <= 1000000)
           cg_slow = true;
         return report;

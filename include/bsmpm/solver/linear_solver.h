@@ -114,6 +114,12 @@ namespace bsmpm
     }
 
   private:
+    /** Automatic mode: the CG iterations above which a system of @p n
+     * unknowns is factorised faster ('Automatic iteration limit' at 100 k
+     * unknowns, scaled as sqrt(n), not below half of it). */
+    unsigned int
+    iteration_limit(const types::global_dof_index n) const;
+
     /** Sparse LU (L D L^T of a @p symmetric matrix) with iterative
      * refinement: MUMPS, with more workspace if it runs short, else KLU. Throws
      * a message (no error numbers of Trilinos or MUMPS) if neither factorises
