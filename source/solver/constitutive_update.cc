@@ -1246,9 +1246,8 @@ namespace bsmpm
               }
             if (has_material && props[Property::volume] > 0.)
               {
-                const double w = quadrature_weights ? props[Property::weight] :
-                                                      props[Property::volume];
-                const std::array<double, 6> m = point_moments(w, st);
+                const std::array<double, 6> m =
+                  point_moments(integration_weight(props), st);
                 // A point that does not yield has the elastic tangent
                 // (ConstitutiveResponse::yielded).
                 plastic = plastic || yielded;

@@ -264,7 +264,7 @@ namespace bsmpm
                              TrilinosWrappers::MPI::Vector        &solution,
                              const TrilinosWrappers::MPI::Vector  &rhs,
                              const bool                            symmetric,
-                             const double accuracy) const
+                             const double                          enough) const
   {
     Report                  report;
     const double            rhs_norm  = rhs.l2_norm();
@@ -350,7 +350,7 @@ namespace bsmpm
         residual.sadd(-1., 1., rhs);
         const double norm = residual.l2_norm();
         if (norm >= 0.5 * previous ||
-            norm <= std::max(accuracy, 1e-15) * rhs_norm)
+            norm <= std::max(enough, 1e-15 * rhs_norm))
           break;
         previous = norm;
         AssertThrow(direct.solve(correction, residual),
@@ -726,7 +726,7 @@ namespace bsmpm
                       const TrilinosWrappers::MPI::Vector  &rhs,
                       const DoFHandler<2>                  &dof_handler,
                       const bool                            symmetric,
-                      const double                          accuracy) const
+                      const double                          enough) const
   {
     if (rhs.l2_norm() == 0.)
       {
@@ -742,8 +742,7 @@ namespace bsmpm
        (matrix.m() <= automatic_threshold || cg_failed || cg_slow));
     if (use_direct)
       {
-        Report report =
-          solve_direct(matrix, solution, rhs, symmetric, accuracy);
+        Report report = solve_direct(matrix, solution, rhs, symmetric, enough);
         if (cg_slow && !cg_slow_said && !cg_failed)
           {
             report.method += ", cg slow";
@@ -795,13 +794,12 @@ namespace bsmpm
             gmg_failed           = true;
             gmg_failed_matrix    = &matrix.trilinos_matrix();
             gmg_failed_structure = matrix_structure(matrix);
-            return solve(
-              matrix, solution, rhs, dof_handler, symmetric, accuracy);
+            return solve(matrix, solution, rhs, dof_handler, symmetric, enough);
           }
       }
     // Factorise, now and in the following load steps.
     cg_failed     = true;
-    Report direct = solve_direct(matrix, solution, rhs, symmetric, accuracy);
+    Report direct = solve_direct(matrix, solution, rhs, symmetric, enough);
     direct.method += ", cg failed";
     return direct;
   }

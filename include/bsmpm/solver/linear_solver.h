@@ -72,18 +72,18 @@ namespace bsmpm
      * solve direct. An unsymmetric @p matrix (not @p symmetric) is solved
      * by GMRES with the same preconditioner instead of CG.
      *
-     * @p accuracy: the relative residual ||K x - b|| / ||b|| the caller
-     * needs from a direct solve, which refines its solution only while
-     * the residual is above it (0: as far as the factors reduce it). A
-     * Newton correction needs little: the next iteration's residual
-     * corrects whatever the solve leaves. */
+     * @p enough: the residual ||K x - b|| the caller needs from a direct
+     * solve, which refines its solution only while the residual is above
+     * it (0: as far as the factors reduce it). A Newton correction needs
+     * little: the next iteration's residual corrects whatever the solve
+     * leaves. */
     Report
     solve(const TrilinosWrappers::SparseMatrix &matrix,
           TrilinosWrappers::MPI::Vector        &solution,
           const TrilinosWrappers::MPI::Vector  &rhs,
           const DoFHandler<2>                  &dof_handler,
           const bool                            symmetric = true,
-          const double                          accuracy  = 0.) const;
+          const double                          enough    = 0.) const;
 
     /** As solve(), for the @p matrix of the last solve() unchanged since:
      * the direct solver's factors serve as they are, with no new
@@ -129,7 +129,7 @@ namespace bsmpm
                  TrilinosWrappers::MPI::Vector        &solution,
                  const TrilinosWrappers::MPI::Vector  &rhs,
                  const bool                            symmetric,
-                 const double                          accuracy) const;
+                 const double                          enough) const;
 
     /** cg amg, cg gmg: the multigrid preconditioner (geometric or ML),
      * kept for later solves. */
