@@ -61,7 +61,7 @@
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
-#include <bsmpm/solver/cell_scatter.h>
+#include <bsmpm/assembly/cell_scatter.h>
 
 #include <algorithm>
 #include <functional>

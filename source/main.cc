@@ -11,8 +11,8 @@
 #include <bsmpm/io/mpi_start.h>
 #include <bsmpm/io/parameter_listing.h>
 #include <bsmpm/io/parameter_sweep.h>
-#include <bsmpm/scene.h>
-#include <bsmpm/strength_reduction.h>
+#include <bsmpm/analysis/scene.h>
+#include <bsmpm/analysis/strength_reduction.h>
 
 #include <boost/archive/archive_exception.hpp>
 

@@ -7,12 +7,13 @@ import pathlib
 import re
 import sys
 
-# Bottom to top. The orchestrator (include/bsmpm/scene.h, source/scene.cc),
-# the strength reduction that runs it repeatedly (strength_reduction.*)
-# and the driver (source/main.cc) stand above all of them; the driver's
-# parts (command line, parameter files, sweeps, error reports) are io.
-LAYERS = ["base", "geometry", "materials", "points", "verification",
-          "boundary", "contact", "solver", "io"]
+# Bottom to top. The whole analyses (analysis/: the Scene that orders a
+# load step, the strength reduction that runs scenes as trials) stand above
+# io, and the driver (source/main.cc) above all; the driver's parts
+# (command line, parameter files, sweeps, error reports) are io.
+LAYERS = ["base", "linear_algebra", "geometry", "materials", "points",
+          "verification", "boundary", "quadrature", "contact", "assembly",
+          "nonlinear", "io", "analysis"]
 TOP = len(LAYERS)
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else

@@ -36,7 +36,7 @@
 #include <bsmpm/materials/linear_elastic_model.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/materials/von_mises_plasticity.h>
-#include <bsmpm/solver/constitutive_update.h>
+#include <bsmpm/assembly/constitutive_update.h>
 
 #include <cmath>
 #include <memory>

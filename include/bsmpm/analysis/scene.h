@@ -1,0 +1,246 @@
+#ifndef bsmpm_scene_h
+#define bsmpm_scene_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/ghost_penalty.h>
+#include <bsmpm/boundary/implicit_boundary.h>
+#include <bsmpm/boundary/neumann_loads.h>
+#include <bsmpm/boundary/nitsche_boundary.h>
+#include <bsmpm/boundary/support_reaction.h>
+#include <bsmpm/contact/curve_contact.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/geometry/body_region.h>
+#include <bsmpm/io/checkpoint.h>
+#include <bsmpm/io/output_writer.h>
+#include <bsmpm/io/run_summary.h>
+#include <bsmpm/io/step_output.h>
+#include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/points/material_point_layout.h>
+#include <bsmpm/points/material_points.h>
+#include <bsmpm/points/probe.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+#include <bsmpm/nonlinear/collapse_detector.h>
+#include <bsmpm/assembly/constitutive_update.h>
+#include <bsmpm/quadrature/cut_cell_quadrature.h>
+#include <bsmpm/nonlinear/displacement_control.h>
+#include <bsmpm/nonlinear/increment_solver.h>
+#include <bsmpm/linear_algebra/linear_solver.h>
+#include <bsmpm/nonlinear/newton_solver.h>
+#include <bsmpm/assembly/system_assembly.h>
+#include <bsmpm/verification/exact_solution.h>
+#include <bsmpm/verification/verification.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * One analysis: an implicit, quasi-static, small-strain MPM run in load
+   * steps (paper Sec. 2, method-notes Sec. 1). Per load step:
+   *
+   *   sort points into cells -> constrain the DoFs of empty cells ->
+   *   assemble K and r = f_ext(lambda) - f_int(sigma_n) from the material
+   *   points and the tractions on the boundary curves -> solve K du = r ->
+   *   move the points (strain, stress, displacement, position) -> rebuild
+   *   the boundary curves through their moved points -> errors and output.
+   *
+   * The grid is reset after every step: only the points move.
+   */
+  class Scene
+  {
+  public:
+    explicit Scene(const MPI_Comm communicator);
+
+    /** Declares every parameter of bsmpm (all sections). */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Divides the strength of the constitutive model by @p factor
+     * (strength reduction, StrengthReduction); call before
+     * parse_parameters(). */
+    void
+    reduce_strength(const double factor)
+    {
+      strength_factor = factor;
+    }
+
+    /** Prints nothing (the trials of a strength reduction). */
+    void
+    quiet()
+    {
+      pcout.set_condition(false);
+    }
+
+    /** Whether run() stopped at a limit load, and the detector's figures. */
+    const CollapseDetector &
+    collapse() const
+    {
+      return collapse_detector;
+    }
+
+    /** Runs all load steps and writes the summary. */
+    void
+    run();
+
+    /** Makes run() continue from the checkpoint @p directory (see
+     * Checkpoint) instead of starting; call after parse_parameters(). */
+    void
+    resume_from(const std::string &directory)
+    {
+      checkpoint.resume_from(directory);
+    }
+
+    const RunSummary &
+    summary() const
+    {
+      return run_summary;
+    }
+
+  private:
+    void
+    setup();
+    void
+    fit_prescribed_displacement(const double increment_factor);
+    /** Material moments of every cell, plain or by the cut-cell quadrature. */
+    void
+    compute_cell_moments();
+    /**
+     * Takes the load from factor @p from to @p to: one increment, or more
+     * where a nonlinear material's Newton iterations fail and the
+     * increment is halved. Fills the solver figures of @p record and its
+     * load factor, which stays below @p to where the collapse detector
+     * stops the step.
+     */
+    void
+    advance(const unsigned int step,
+            const double       from,
+            const double       to,
+            RunSummary::Step  &record);
+    /**
+     * Load step @p step under displacement control: the control
+     * displacement grows by its increment (halved where Newton fails), the
+     * load factor follows (DisplacementControl). Fills @p record with the
+     * load factor reached.
+     */
+    void
+    advance_under_displacement_control(const unsigned int step,
+                                       RunSummary::Step  &record);
+    /** Newton iterations of a nonlinear material for the assembled load
+     * increment @p delta from @p lambda, cut @p cuts times so far; commits
+     * the points' state if they converge. Returns whether they did. */
+    bool
+    solve_nonlinear(const unsigned int step,
+                    const double       lambda,
+                    const double       delta,
+                    const unsigned int cuts,
+                    RunSummary::Step  &record);
+    /** Moves the points by the converged increment of load increment
+     * @p delta of load step @p step. */
+    void
+    move_points(const unsigned int step, const double delta);
+    /** Rebuilds the curves through the moved points and their cuts; an
+     * error names load step @p step (0: before the first step). */
+    void
+    update_curves(const unsigned int step);
+    /** The probe, support reactions, traction resultant and yielded
+     * points after a load step, into the run's quantities. */
+    void
+    record_quantities(const RunSummary::Step &record);
+    /** Increments accepted at their best iterate (Nonlinear solver/Stall
+     * tolerance): how many and the largest residual, said at the end of
+     * the run and in its quantities. */
+    void
+    report_stalled_increments();
+    void
+    write_output(const unsigned int step, const double load_factor);
+    void
+    evaluate_errors();
+    void
+    write_checkpoint(const unsigned int step);
+
+    MPI_Comm            communicator;
+    ConditionalOStream  pcout;
+    mutable TimerOutput timer;
+    Timer               total_timer;
+
+    std::string  scene_name;
+    unsigned int n_load_steps = 1;
+    /** The constitutive model's strength is divided by this. */
+    double              strength_factor = 1;
+    CollapseDetector    collapse_detector;
+    DisplacementControl displacement_control;
+    /** Under displacement control: the load factor reached, the loads of
+     * load factor 1 and their traction resultant. */
+    double                             controlled_load_factor = 0;
+    TrilinosWrappers::MPI::Vector      reference_loads;
+    Tensor<1, 2>                       unit_traction_resultant;
+    Tensor<1, 2>                       gravity;
+    BackgroundGrid                     grid;
+    LinearElasticMaterial              material;
+    std::unique_ptr<ConstitutiveModel> constitutive_model;
+    /** Only for a nonlinear constitutive model or finite strain. */
+    std::unique_ptr<ConstitutiveUpdate> constitutive_update;
+    /** The linear path's volumetric strain is the cell's mean (B-bar). */
+    bool linear_b_bar = false;
+
+    /** Whether the points follow the finite-strain kinematics. */
+    bool
+    finite_strain() const
+    {
+      return constitutive_update &&
+             constitutive_update->kinematics() ==
+               ConstitutiveUpdate::Kinematics::finite_strain;
+    }
+    NewtonSolver                     newton;
+    BodyRegion                       region;
+    MaterialPointLayout              layout;
+    MaterialPoints                   points;
+    Probe                            probe;
+    BoundaryCurves                   boundary_curves;
+    NeumannLoads                     neumann_loads;
+    ImplicitBoundary                 implicit_boundary;
+    NitscheBoundary                  nitsche_boundary;
+    CurveContact                     contact;
+    GhostPenalty                     ghost_penalty;
+    SupportReaction                  reactions;
+    CutCellQuadrature                cut_cell_quadrature;
+    LinearSolver                     linear_solver;
+    OutputWriter                     output;
+    StepOutput                       step_output;
+    Checkpoint                       checkpoint;
+    Verification                     verification;
+    std::unique_ptr<ExactSolution>   exact_solution;
+    std::unique_ptr<SystemAssembly>  assembly;
+    std::unique_ptr<IncrementSolver> increment_solver;
+
+    LinearAlgebra::distributed::Vector<double> increment;
+    /** Whether points moved since they were last sorted into cells. */
+    bool points_moved = false;
+    /** Nodal values d^a of the prescribed displacement increment (IBM). */
+    LinearAlgebra::distributed::Vector<double> prescribed;
+    bool                                       has_prescribed = false;
+    /** Locally owned cells crossed by an IBM support band. */
+    std::vector<bool>        band_cells;
+    std::vector<CellMoments> cell_moments;
+    /** Support quality of every locally owned cell in this step. */
+    std::vector<double> cell_quality;
+
+    RunSummary run_summary;
+  };
+} // namespace bsmpm
+
+#endif

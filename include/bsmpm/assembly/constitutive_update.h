@@ -1,0 +1,525 @@
+#ifndef bsmpm_constitutive_update_h
+#define bsmpm_constitutive_update_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/points/material_points.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+#include <bsmpm/assembly/cell_scatter.h>
+
+#include <memory>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * A constitutive model at the material points, integrated point by point:
+   * its share of the Newton system of a load step, and the update of the
+   * points' state once the step has converged (doc/newton.md,
+   * doc/finite-strain.md).
+   *
+   * The material's whole contribution comes from the points, each with its
+   * quadrature weight w_p (the moment-fitted weight in cut cells, else its
+   * volume). In small strain, for the increment d with strain increments
+   * de_p = B_p d,
+   *
+   *   f_int(d) = sum_p w_p B_p^T sigma(eps_e,n + de_p),
+   *   K_T(d)   = sum_p w_p B_p^T D_p B_p,
+   *
+   * D_p the algorithmic tangent. With B-bar, B_p is replaced by the
+   * modified strain columns (xx, yy, zz, engineering xy) whose volumetric
+   * part is the mean over the points of the cell.
+   *
+   * In finite strain (updated Lagrangian on the configuration at the start
+   * of the step) the increment gives every point a relative deformation
+   * gradient f_p = 1 + grad_n(u); the trial elastic state is
+   * b_e^tr = f b_e,n f^T, the model returns the Kirchhoff stress tau of
+   * eps^tr = ln(b_e^tr) / 2, and
+   *
+   *   f_int,a = sum_p (w_p / J_n,p) tau_p g_a,p,   g_a = f^-T grad_n N_a,
+   *
+   * with the consistent tangent derived in doc/finite-strain.md. With
+   * B-bar the volumetric part of ln f is replaced by that at the points'
+   * centroid (F-bar). The body force then acts on the points' masses.
+   */
+  class ConstitutiveUpdate
+  {
+  public:
+    /** The entries "Volumetric strain" and "Kinematics" of section
+     * "Material". */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The update that @p model needs with the kinematics and volumetric
+     * strain of section "Material": null for a linear model in small
+     * strain, which the linear system integrates itself, unless
+     * @p newton (something else, contact, needs Newton iterations). Throws
+     * if finite strain is asked of a @p material that is not in plane
+     * strain.
+     */
+    static std::unique_ptr<ConstitutiveUpdate>
+    create(ParameterHandler            &prm,
+           const ConstitutiveModel     &model,
+           const LinearElasticMaterial &material,
+           const bool                   newton = false);
+
+    /** Whether "Material/Volumetric strain" is B-bar: what the linear path
+     * (Q1CellKernel) takes when create() returns no update. */
+    static bool
+    uses_b_bar(ParameterHandler &prm);
+
+    enum class Kinematics
+    {
+      small_strain,
+      finite_strain
+    };
+
+    /**
+     * With @p b_bar, the volumetric strain of every point is replaced by
+     * the mean over the points of its cell (B-bar, doc/newton.md; F-bar in
+     * finite strain), which keeps isochoric plastic flow from locking the
+     * Q1 grid.
+     */
+    ConstitutiveUpdate(const ConstitutiveModel &model,
+                       const bool               b_bar,
+                       const Kinematics         kinematics);
+
+    Kinematics
+    kinematics() const
+    {
+      return point_kinematics;
+    }
+
+    /**
+     * A quadrature point of the part of a cell where a support carries its
+     * own elastic stiffness in place of the points' (the implicit boundary's
+     * band, doc/newton.md "Supports in the tangent"), in the cell's
+     * reference coordinates.
+     */
+    struct SupportBandPoint
+    {
+      Point<2> st;
+      double   weight;
+    };
+    /** Those points by active_cell_index(). */
+    using SupportBands = std::vector<std::vector<SupportBandPoint>>;
+
+    /** Whether the material's tangent is symmetric: not with F-bar or a
+     * model without a symmetric tangent (doc/finite-strain.md). */
+    bool
+    symmetric_tangent() const
+    {
+      return model.symmetric_tangent() &&
+             !(b_bar && point_kinematics == Kinematics::finite_strain);
+    }
+
+    /** Finite strain: the body force per unit reference volume (rho_0
+     * lambda g) that assemble() integrates over the points' masses. */
+    void
+    set_body_force(const Tensor<1, 2> &force)
+    {
+      body_force = force;
+    }
+
+    /**
+     * With @p moments (by active_cell_index(), from
+     * CutCellQuadrature::correct_cell_moments(); kept by the caller), the
+     * points carry quadrature weights of their own (Property::weight) and
+     * the cells' exact moments complete what these weights miss (see
+     * cell_system()); with nullptr the points integrate with their volumes.
+     */
+    void
+    use_cut_cell_quadrature(const std::vector<CellMoments> *moments)
+    {
+      quadrature_weights = moments != nullptr;
+      exact_moments      = moments;
+    }
+
+    /**
+     * Whether the cells' exact moments complete the points' weights and
+     * the cells of the body without points are integrated here (virtual
+     * points, cell_system() and assemble()), and B-bar/F-bar take the exact
+     * centroid: with the cut-cell quadrature in finite strain. Not yet in
+     * small strain, where the virtual points' averaged plastic states kept
+     * Newton from converging on the strip footing (doc/finite-strain.md).
+     */
+    bool
+    completes_moments() const
+    {
+      return exact_moments != nullptr &&
+             point_kinematics == Kinematics::finite_strain;
+    }
+
+    /** What assemble() found, on this process. */
+    struct AssemblyCount
+    {
+      /** Locally owned points with volume that yield. */
+      unsigned long long yielded = 0;
+      /**
+       * Cells left out because the increment inverts one of their points
+       * (det f <= 0, finite strain): the increment is no admissible state,
+       * it has no finite residual, and the Newton iteration must take a
+       * shorter step (SystemAssembly::newton_system() then returns an
+       * infinite |R|, which the line search backs away from).
+       */
+      unsigned long long inverted_cells = 0;
+    };
+
+    /** The points' volume and its first moments in a cell: where B-bar
+     * takes the cell's mean volumetric strain (their centroid). */
+    struct VolumeMoments
+    {
+      double v = 0, vs = 0, vt = 0;
+
+      void
+      add(const Point<2> &st, const double volume)
+      {
+        v += volume;
+        vs += volume * st[0];
+        vt += volume * st[1];
+      }
+    };
+
+    /**
+     * What a cell's points give once per load increment, so that the
+     * Newton systems of the increment need none of them while the cell
+     * stays elastic (small strain; doc/newton.md, "Cells that stay
+     * elastic"). With the strain increment of the cell affine,
+     * de(s, t) = E_0 + s E_s + t E_t, and every point elastic, the stress
+     * of point p is D_e (e_n,p + de_p) and the sums of cell_system() are
+     *
+     *   S_a = D_e (sum_p w_p m_a e_n,p + sum_b M_ab E_b),   H_ab = M_ab D_e,
+     *
+     * m = (1, s, t). Every point is elastic if the largest |de| over the
+     * box of the points' (s, t) stays below the smallest of their
+     * ConstitutiveModel::elastic_reach().
+     */
+    struct ElasticCell
+    {
+      /** The smallest elastic reach of the points with weight; 0: the
+       * cell takes the point-by-point path. */
+      double reach = 0;
+      /** The box of the points' reference coordinates: centre, half
+       * widths. */
+      Point<2> centre;
+      double   half_width_s = 0, half_width_t = 0;
+      /** M_ab = sum_p w_p m_a m_b, in the order of cell_system()'s H. */
+      double M[6] = {};
+      /** sum_p w_p m_a e_n,p, the stored elastic strains (xx, yy, zz,
+       * engineering xy). */
+      double strain_moments[3][4] = {};
+      /** B-bar's centroid. */
+      VolumeMoments volume;
+    };
+    /** By active_cell_index(). */
+    using ElasticCells = std::vector<ElasticCell>;
+
+    /**
+     * The ElasticCell of every locally owned cell, for the points as they
+     * are (call it at the start of each load increment: commit() and
+     * MaterialPoints::move() make them stale). Empty in finite strain.
+     */
+    void
+    prepare_elastic_cells(const MaterialPoints &points,
+                          const BackgroundGrid &grid,
+                          ElasticCells         &cells) const;
+
+    /**
+     * Adds K_T to @p tangent and f_int to @p internal_force for the
+     * increment @p increment (with ghost values) and, if given, the
+     * prescribed nodal values @p prescribed, through @p constraints.
+     * Neither is compressed; @p scatter serves @p tangent (see CellScatter:
+     * the cells' positions in it are kept between assemblies). A cell whose
+     * points the increment inverts adds nothing and is counted instead
+     * (never a NaN in the system). With @p bands, the tangent of a cell
+     * crossed by a support's band is stiffened there (cell_system()).
+     */
+    AssemblyCount
+    assemble(const MaterialPoints                             &points,
+             const BackgroundGrid                             &grid,
+             const Q1CellKernel                               &kernel,
+             const LinearAlgebra::distributed::Vector<double> &increment,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const AffineConstraints<double>                  &constraints,
+             TrilinosWrappers::SparseMatrix                   &tangent,
+             TrilinosWrappers::MPI::Vector                    &internal_force,
+             CellScatter                                      &scatter,
+             const SupportBands                               *bands = nullptr,
+             const ElasticCells *elastic_cells = nullptr) const;
+
+    /**
+     * Stores the state at the end of the step in every point (tracking
+     * points too): elastic strain, equivalent plastic strain, stress
+     * (in-plane and zz) and the yield flag. Call it before
+     * MaterialPoints::move(), which then leaves the stress alone. Returns
+     * the number of points with volume that yielded, over all processes.
+     */
+    unsigned long long
+    commit(MaterialPoints                                   &points,
+           const BackgroundGrid                             &grid,
+           const Q1CellKernel                               &kernel,
+           const LinearAlgebra::distributed::Vector<double> &increment,
+           const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
+    /**
+     * How much of its elastic stiffness the material keeps round each grid
+     * vertex in the state that the last commit() stored, by DoF (both
+     * DoFs of a vertex hold its value, with ghost values); nullptr before
+     * the first commit(). For vertex v with DoFs v_x, v_y it is
+     *
+     *   rho_v = lambda_min(K_vv(D)) / lambda_min(K_vv(D_e)),
+     *
+     * K_vv(D) = sum_p w_p B_v,p^T D B_v,p the 2x2 block of v in the
+     * tangent of the points round v, with their algorithmic tangents D_p
+     * at the end of the step, and K_vv(D_e) the same with the elastic
+     * tangent: 1 where every point round v responds elastically (exactly:
+     * the same sums), towards 0 where the points are perfectly plastic and
+     * their flow takes the one direction in which they would hold v (the
+     * upper vertex of a cut cell whose points lie near its bottom).
+     * GhostPenalty::cell_qualities scales the support quality by it.
+     */
+    const LinearAlgebra::distributed::Vector<double> *
+    support_stiffness_ratios() const
+    {
+      return stiffness_ratio.size() > 0 ? &stiffness_ratio : nullptr;
+    }
+
+    /** Voigt form (xx, yy, zz, xy; engineering shear) of a 3D tangent. */
+    static Tensor<2, 4>
+    voigt_tangent(const SymmetricTensor<4, 3> &tangent);
+
+    /** A point of a cell as the cell's system sees it. */
+    struct PointView
+    {
+      Point<2>                st;
+      ArrayView<const double> props;
+    };
+
+    /**
+     * The internal force (minus the body force in finite strain) @p f and
+     * the tangent @p K (both set, not added to) of the points @p cell_points
+     * of one cell for the local increment @p d. Returns how many points
+     * with volume yield. If the increment inverts a point of the cell
+     * (det f <= 0 in finite strain, at a point or, with F-bar, at the
+     * centroid), @p f is NaN (the caller must not assemble it: see
+     * assemble()). Used by assemble(); public for the tests.
+     *
+     * With the cell's exact moments @p exact_moments (and quadrature
+     * weights), where the points' weights miss its area or first moments
+     * (a cut cell whose points carry its area only), two virtual points
+     * with the points' mean state complete them: the exact area at the
+     * exact centroid, minus the points' weight at their centroid. Then the
+     * force of a homogeneous deformation is that of the exact geometry, as
+     * in the linear path (doc/cut-cells.md, doc/finite-strain.md). A cell
+     * with a single point is integrated instead by four points of its
+     * exact moments with that point's state (a one-point rule would leave
+     * the cell's hourglass modes without stiffness).
+     *
+     * With @p band (small strain), the quadrature points of an implicit
+     * boundary band in the cell: the band's terms (ImplicitBoundary) replace
+     * the regular elastic energy there by that of the band's field, which
+     * holds the support like a penalty of order E / delta. With a material
+     * that yields, the points' energy is not the elastic one the band takes
+     * out, and the sum is indefinite where they yield (CG fails, Newton's
+     * correction stops descending, steps are cut). So the band is an elastic
+     * layer: two virtual points per band point, with the points' mean state,
+     * put the elastic material in (+w) and take the points' material out
+     * (-w). Where the mean state responds elastically they cancel to the
+     * last bit; where it yields they add int_band Bbar^T (C - D) Bbar >= 0,
+     * and force and tangent stay consistent (doc/newton.md).
+     */
+    unsigned int
+    cell_system(const Q1CellKernel                  &kernel,
+                const std::vector<PointView>        &cell_points,
+                const Q1CellKernel::LocalVector     &d,
+                FullMatrix<double>                  &K,
+                Vector<double>                      &f,
+                const CellMoments                   *exact_moments = nullptr,
+                const std::vector<SupportBandPoint> *band = nullptr) const;
+
+    /** The ElasticCell of the points @p cell_points of one cell (small
+     * strain). */
+    ElasticCell
+    elastic_cell(const std::vector<PointView> &cell_points) const;
+
+    /**
+     * cell_system() without the points, for a cell whose points all stay
+     * elastic under the local increment @p d (see ElasticCell): K and f
+     * (set) from @p cell's moments; false, and neither set, where that is
+     * not certain. Used by assemble(); public for the tests.
+     */
+    bool
+    elastic_cell_system(const Q1CellKernel              &kernel,
+                        const ElasticCell               &cell,
+                        const Q1CellKernel::LocalVector &d,
+                        FullMatrix<double>              &K,
+                        Vector<double>                  &f,
+                        const CellMoments *exact_moments = nullptr) const;
+
+    /**
+     * Finite strain at a point of a support (ImplicitBoundary's band,
+     * NitscheBoundary's curve points; doc/finite-strain.md, "Supports in
+     * finite strain"): the first Piola stress of the configuration at the
+     * step's start, P = tau f^-T / J_n, of a point with the properties
+     * @p props (elastic and plastic strain, det F as of the step's start)
+     * under the relative deformation gradient @p f (f_zz = 1), and its
+     * derivative @p A, A[i][j][k][l] = d P_ij / d f_kl. The same trial
+     * state and return as the points' (without F-bar). Returns false, P
+     * and A unset, if det f <= 0.
+     */
+    bool
+    first_piola_stress(const ArrayView<const double> &props,
+                       const Tensor<2, 2>            &f,
+                       Tensor<2, 2>                  &P,
+                       Tensor<4, 2>                  &A) const;
+
+  private:
+    /** How the strain of the points of one cell is computed. */
+    struct CellStrain
+    {
+      /** Standard strain of the cell: e[0] + s e[1] + t e[2]. */
+      std::array<Voigt, 3> coefficients;
+      /** B-bar: the local coordinates where the cell's mean volumetric
+       * strain is taken (the points' centroid). */
+      bool     use_b_bar = false;
+      Point<2> centroid;
+      /** B-bar, small strain: the volumetric strain of each shape function
+       * column at the centroid, the same for every point of the cell. */
+      std::array<double, 8> centroid_volumetric;
+      /** F-bar: ln det f at the centroid and the spatial gradients of the
+       * shape functions there. */
+      double                      log_det_centroid = 0;
+      std::array<Tensor<1, 2>, 8> centroid_gradients;
+      /** F-bar: the increment inverts the cell at the centroid. */
+      bool inverted = false;
+      /** The small-strain (B-bar) strain columns (xx, yy, zz,
+       * engineering xy) of the shape functions are affine in the cell,
+       * column i at (s, t) being
+       * columns[0][i] + s columns[1][i] + t columns[2][i] (in finite
+       * strain too: commit() weighs the vertices' stiffness with them),
+       * and, in small strain, so is the strain increment of the cell's d,
+       * increment[0] + s increment[1] + t increment[2]. */
+      std::array<std::array<Tensor<1, 4>, 8>, 3> columns;
+      std::array<Tensor<1, 4>, 3>                increment;
+    };
+
+    /** The strain of the cell's points; with B-bar its mean volumetric
+     * part is taken at the points' centroid, or at the exact centroid of
+     * @p exact_moments with the cut-cell quadrature. */
+    CellStrain
+    cell_strain(const Q1CellKernel              &kernel,
+                const std::vector<PointView>    &cell_points,
+                const Q1CellKernel::LocalVector &d,
+                const CellMoments               *exact_moments) const;
+
+    /** The same for the points' volume moments @p volume. */
+    CellStrain
+    cell_strain(const Q1CellKernel              &kernel,
+                const VolumeMoments             &volume,
+                const Q1CellKernel::LocalVector &d,
+                const CellMoments               *exact_moments) const;
+
+    /**
+     * Small strain: K and f (set) from the sums of cell_system(), H_ab of
+     * the points that yield (if @p plastic), the scalar moments M_ab of
+     * those that do not, and S_a of all.
+     */
+    void
+    system_from_moments(const CellStrain &strain,
+                        const double (&H)[6][16],
+                        const bool plastic,
+                        const double (&M)[6],
+                        const double (&S)[3][4],
+                        FullMatrix<double> &K,
+                        Vector<double>     &f) const;
+
+    /** What the finite-strain kinematics give at one point. */
+    struct FiniteStrainPoint
+    {
+      /** Relative deformation gradient f, its determinant, and the
+       * spatial gradients g_i = f^-T grad_n N_i. */
+      Tensor<2, 2>                f;
+      double                      det_f = 1;
+      std::array<Tensor<1, 2>, 8> gradients;
+      /** Trial b_e (in-plane block). */
+      Tensor<2, 2> trial_b;
+      /** d ln(b_e^tr) / d b_e^tr on in-plane tensors, as a matrix on the
+       * components (xx, yy, xy) (see InPlaneFunction). */
+      Tensor<2, 3> log_derivative;
+    };
+
+    /** B-bar/F-bar: the centroid of @p strain and what is taken there
+     * (cell_strain()); leaves use_b_bar false for a cell without
+     * volume. */
+    void
+    centroid_strain(const Q1CellKernel              &kernel,
+                    const VolumeMoments             &volume,
+                    const Q1CellKernel::LocalVector &d,
+                    const CellMoments               *exact_moments,
+                    CellStrain                      &strain) const;
+
+    /** f and the trial elastic strain (into @p state) of a point at @p st
+     * with properties @p props; with F-bar, @p strain's centroid sets the
+     * volumetric part. */
+    FiniteStrainPoint
+    finite_strain_trial(const Q1CellKernel              &kernel,
+                        const CellStrain                &strain,
+                        const Point<2>                  &st,
+                        const ArrayView<const double>   &props,
+                        const Q1CellKernel::LocalVector &d,
+                        const Tensor<2, 2>              *gradient,
+                        ConstitutiveState               &state) const;
+
+    /** The (B-bar) strain increment (xx, yy, zz, engineering xy) at
+     * @p st of the local increment that @p strain was made for (small
+     * strain). */
+    static Tensor<1, 4>
+    strain_increment(const CellStrain &strain, const Point<2> &st)
+    {
+      return strain.increment[0] + st[0] * strain.increment[1] +
+             st[1] * strain.increment[2];
+    }
+
+    /** The model's response to the strain increment @p de (xx, yy, zz,
+     * engineering xy) of the point with properties @p props
+     * (ConstitutiveModel::plane_strain_update(): the stress, the Voigt
+     * tangent only if the point yields, which it returns); @p state
+     * returns the updated state. */
+    bool
+    respond(const ArrayView<const double> &props,
+            const Tensor<1, 4>            &de,
+            ConstitutiveState             &state,
+            std::array<double, 4>         &stress,
+            std::array<double, 16>        &tangent) const;
+
+    /** The weight a point of @p props integrates with: its fitted weight
+     * with the cut-cell quadrature, else its volume; zero for a point that
+     * holds no material (no volume), which the sums skip. */
+    double
+    integration_weight(const ArrayView<const double> &props) const;
+
+    const ConstitutiveModel &model;
+    const bool               b_bar;
+    /** The model's elastic tangent in Voigt form (voigt_tangent()). */
+    const Tensor<2, 4> elastic_voigt;
+    const Kinematics   point_kinematics;
+    bool               quadrature_weights = false;
+    /** See use_cut_cell_quadrature(). */
+    const std::vector<CellMoments> *exact_moments = nullptr;
+    Tensor<1, 2>                    body_force;
+    /** See support_stiffness_ratios(). */
+    mutable LinearAlgebra::distributed::Vector<double> stiffness_ratio;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,398 @@
+#ifndef bsmpm_system_assembly_h
+#define bsmpm_system_assembly_h
+
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/ghost_penalty.h>
+#include <bsmpm/boundary/implicit_boundary.h>
+#include <bsmpm/boundary/neumann_loads.h>
+#include <bsmpm/boundary/nitsche_boundary.h>
+#include <bsmpm/contact/curve_contact.h>
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+#include <bsmpm/assembly/cell_scatter.h>
+#include <bsmpm/assembly/constitutive_update.h>
+#include <bsmpm/verification/exact_solution.h>
+
+#include <memory>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The linear system K du = r of a load step (method-notes Sec. 1):
+   *
+   * - constraints: the DoFs that no cell with material (or crossed by a
+   *   support) touches are fixed at zero, or K would be singular; the grid's
+   *   face supports;
+   * - K and r = f_ext(lambda) - f_int(sigma_n) from the cell moments of the
+   *   material points (Q1CellKernel), the ghost penalty, the supports on
+   *   the boundary curves (implicit boundary method, Nitsche) and the loads
+   *   on them.
+   *
+   * The sparsity pattern holds the couplings of the full grid, so it is
+   * built once for all load steps, whichever cells hold material.
+   */
+  class SystemAssembly
+  {
+  public:
+    /** What the system is made of; all owned by the caller. */
+    struct Parts
+    {
+      const BackgroundGrid        &grid;
+      const LinearElasticMaterial &material;
+      const BoundaryCurves        &curves;
+      NeumannLoads                &neumann_loads;
+      ImplicitBoundary            &implicit_boundary;
+      const NitscheBoundary       &nitsche_boundary;
+      const GhostPenalty          &ghost_penalty;
+      /** The scene's exact solution, or nullptr. */
+      const ExactSolution *exact_solution;
+      /** Gravitational acceleration (the body force is density times it). */
+      Tensor<1, 2> gravity;
+      /** Whether the linear kernel takes the cell-mean volumetric strain
+       * (B-bar, "Material/Volumetric strain"); the boundary terms then pair
+       * the same B-bar stress with it. */
+      bool b_bar = false;
+    };
+
+    SystemAssembly(const Parts &parts, TimerOutput &timer);
+
+    /** Builds the sparsity pattern, matrix and vectors; makes the kernel. */
+    void
+    setup();
+
+    const Q1CellKernel &
+    kernel() const
+    {
+      return *cell_kernel;
+    }
+
+    /** Constrains the DoFs that no cell with material (moments by
+     * active_cell_index()) supports, and adds the grid's face supports. */
+    void
+    make_constraints(const std::vector<CellMoments> &moments);
+
+    /**
+     * Assembles K and r for load factor @p load_factor, the load increment
+     * of the step being @p increment_factor (prescribed displacements are
+     * applied incrementally). @p quality: support quality of every locally
+     * owned cell (for the ghost penalty). @p prescribed: the nodal values
+     * d^a of an IBM prescribed displacement increment, or nullptr.
+     */
+    void
+    assemble(const double                                      load_factor,
+             const double                                      increment_factor,
+             const std::vector<CellMoments>                   &moments,
+             const std::vector<double>                        &quality,
+             const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /**
+     * The loads of load factor 1 (body force and tractions) with the
+     * constraints of the last make_constraints(), into @p loads: the
+     * derivative of the residual by the load factor, for displacement
+     * control (small strain only). The traction resultant of
+     * NeumannLoads is then that of load factor 1, until the next
+     * assemble().
+     */
+    void
+    reference_loads(const std::vector<CellMoments> &moments,
+                    TrilinosWrappers::MPI::Vector  &loads);
+
+    /**
+     * The Newton system of a nonlinear material at the increment
+     * @p increment (ghosted, zero at constrained DoFs) after assemble()
+     * without the material (leave_material_to_points()): tangent
+     * K_T = K + K_m and residual R = r - K x - f_int, with K and r the
+     * linear system of the boundaries, loads and stabilisation and K_m,
+     * f_int the material's, from @p update (see ConstitutiveUpdate).
+     * Returns |R|, or infinity if the increment inverts a material point
+     * or a support's point (finite strain; those cells and points are left
+     * out of the system, which holds no NaN): an inadmissible iterate,
+     * from which the line search backs away. With @p elastic_cells (from
+     * ConstitutiveUpdate::prepare_elastic_cells() for these points), the
+     * cells that stay elastic take their moments instead of their points.
+     */
+    double
+    newton_system(
+      const ConstitutiveUpdate                         &update,
+      const MaterialPoints                             &points,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      const ConstitutiveUpdate::ElasticCells *elastic_cells = nullptr);
+
+    const TrilinosWrappers::SparseMatrix &
+    tangent() const
+    {
+      return tangent_matrix;
+    }
+    const TrilinosWrappers::MPI::Vector &
+    residual() const
+    {
+      return newton_residual;
+    }
+    /**
+     * With @p points, assemble() leaves out the stiffness and internal
+     * force of the cells where @p points hold material: a nonlinear model
+     * adds them per iteration (ConstitutiveUpdate). A cell of the body
+     * that holds no point (a sliver the boundary has just cut off, given
+     * its exact moments and the neighbours' stress by CutCellQuadrature)
+     * keeps the elastic stiffness and that stress, as in a linear run:
+     * without them its outer vertices would hold nothing. With
+     * @p cells_without_points (the cut-cell quadrature is on), such a cell
+     * is left to the points too where a face neighbour holds material:
+     * ConstitutiveUpdate integrates it with the neighbourhood's state
+     * (MaterialPoints::neighbourhood_mean_properties()).
+     */
+    void
+    leave_material_to_points(const MaterialPoints *points,
+                             const bool            cells_without_points = false)
+    {
+      material_points             = points;
+      material_from_points        = points != nullptr;
+      pointless_cells_from_points = cells_without_points;
+    }
+
+    /**
+     * Finite strain: the body force acts on the points' masses
+     * (ConstitutiveUpdate integrates it), and a pressure follows the
+     * boundary within the step, so that its load stiffness enters the
+     * matrix (NeumannLoads).
+     */
+    void
+    use_finite_strain(const bool yes)
+    {
+      finite_strain = yes;
+    }
+
+    /**
+     * Contact of the curves with rigid bodies: newton_system() adds its
+     * forces and their derivative (CurveContact::add_newton_terms()).
+     */
+    void
+    use_contact(CurveContact *curve_contact)
+    {
+      contact = curve_contact;
+    }
+
+    /** Whether the contact terms of the last newton_system() kept the
+     * tangent symmetric (nothing slides). */
+    bool
+    contact_tangent_symmetric() const
+    {
+      return contact_symmetric;
+    }
+
+    /**
+     * Which boundary curves (by index) assemble() keeps the supports'
+     * terms (implicit boundary method, Nitsche) of apart, each in a matrix
+     * of the system's pattern, for support_forces().
+     */
+    void
+    keep_support_terms(const std::vector<unsigned int> &curves)
+    {
+      support_curves = curves;
+    }
+
+    /**
+     * The force that the supports of curve @p curve (one of those of
+     * keep_support_terms()) exert on the grid's DoFs at the end of a step
+     * whose converged increment is @p increment: r_s - K_s x, their share
+     * of the system of the last assemble() (without constraints, so that
+     * DoFs that the grid's faces hold keep their share). The rest of the
+     * system balances it: the internal force with the solver's own
+     * quadrature (fitted weights, cells without points), the ghost penalty
+     * and the loads.
+     */
+    TrilinosWrappers::MPI::Vector
+    support_forces(
+      const unsigned int                                curve,
+      const LinearAlgebra::distributed::Vector<double> &increment) const;
+
+    /**
+     * The support quality (GhostPenalty::cell_qualities()) of every locally
+     * owned cell with the material moments @p moments under the constraints
+     * of the last make_constraints(). With @p update (a nonlinear material)
+     * the stiffness that its points have lost lowers it.
+     */
+    std::vector<double>
+    support_qualities(const std::vector<CellMoments> &moments,
+                      const ConstitutiveUpdate       *update) const;
+
+    /** Throws if the loads of the last assemble() (of load step @p step)
+     * are not finite. */
+    void
+    check_loads_finite(const unsigned int step) const;
+
+    /** |f_int| of the points at the last newton_system(): the scale of
+     * the stresses that the residual balances. */
+    double
+    internal_force_size() const
+    {
+      return internal_force_norm;
+    }
+
+    /** Locally owned points with volume that yield at the last
+     * newton_system(), over all processes. */
+    unsigned long long
+    n_yielding() const
+    {
+      return yielding;
+    }
+
+    const AffineConstraints<double> &
+    constraints() const
+    {
+      return system_constraints;
+    }
+    const TrilinosWrappers::SparseMatrix &
+    matrix() const
+    {
+      return system_matrix;
+    }
+    const TrilinosWrappers::MPI::Vector &
+    rhs() const
+    {
+      return system_rhs;
+    }
+    /** A matrix with the system's sparsity pattern for the IBM
+     * least-squares fit of prescribed displacements (set up only when the
+     * curves prescribe one). */
+    TrilinosWrappers::SparseMatrix &
+    fit_matrix()
+    {
+      return boundary_fit_matrix;
+    }
+
+    /**
+     * The locally owned cells of the weak cells the matrix was last made
+     * for. Which cells the matrix couples across faces depends on the
+     * steps a run went through; a checkpoint keeps these so that the run
+     * resumed from it makes the same matrix (a direct solver orders its
+     * work by the pattern, so another one changes the last digits).
+     */
+    std::vector<CellId>
+    weak_cells_of_last_matrix() const;
+
+    /**
+     * Makes the matrix for the weak cells @p cells (every process's
+     * weak_cells_of_last_matrix() of the run that wrote the checkpoint):
+     * the same pattern as that run had. Collective; nothing to do without
+     * a ghost penalty.
+     */
+    void
+    restore_matrix(const std::vector<CellId> &cells);
+
+    /** Number of cells with material or supports, over all processes, at
+     * the last make_constraints(). */
+    unsigned int
+    n_active_cells() const
+    {
+      return active_cells;
+    }
+
+  private:
+    Parts        parts;
+    TimerOutput &timer;
+
+    std::unique_ptr<Q1CellKernel> cell_kernel;
+    /** The cell moments of the current assemble(), for the B-bar stress of
+     * the boundary terms (nullptr outside it). */
+    const std::vector<CellMoments> *assembly_moments = nullptr;
+    AffineConstraints<double>       system_constraints;
+    TrilinosWrappers::SparseMatrix  system_matrix;
+    TrilinosWrappers::MPI::Vector   system_rhs;
+    /** Where the cells' entries lie in system_matrix. */
+    CellScatter                    scatter;
+    TrilinosWrappers::SparseMatrix boundary_fit_matrix;
+    TrilinosWrappers::SparseMatrix tangent_matrix;
+    /** How many times make_matrix() has built system_matrix's layout, and
+     * which of them tangent_matrix has (see newton_system()). */
+    unsigned int                  matrix_layouts = 0;
+    unsigned int                  tangent_layout = 0;
+    TrilinosWrappers::MPI::Vector newton_residual;
+    unsigned long long            yielding                    = 0;
+    bool                          material_from_points        = false;
+    bool                          pointless_cells_from_points = false;
+    const MaterialPoints         *material_points             = nullptr;
+    bool                          finite_strain               = false;
+    CurveContact                 *contact                     = nullptr;
+    bool                          contact_symmetric           = true;
+    double                        internal_force_norm         = 0;
+    /** The implicit boundary's band by cell, for the tangent of nonlinear
+     * materials (ConstitutiveUpdate::cell_system()). */
+    ConstitutiveUpdate::SupportBands support_bands;
+    /** keep_support_terms(): the curves, their supports' terms. */
+    std::vector<unsigned int>                   support_curves;
+    std::vector<TrilinosWrappers::SparseMatrix> support_matrices;
+    std::vector<TrilinosWrappers::MPI::Vector>  support_rhs;
+    /** Whether support_matrices have the layout of system_matrix. */
+    bool support_layout_current = false;
+    /** Where the cells' entries lie in tangent_matrix. */
+    CellScatter tangent_scatter;
+    /**
+     * Builds the sparsity pattern and the matrix: the couplings of every
+     * cell, and across the faces of the cells flagged in @p weak (by
+     * active_cell_index(), owned and ghost) and of their neighbours, where
+     * the ghost penalty acts now or may act after the boundary has moved
+     * by less than a cell.
+     */
+    void
+    make_matrix(const std::vector<bool> &weak);
+
+    /** Adds the terms of the supports (implicit boundary method, Nitsche)
+     * of all curves, or of @p only, to @p matrix and @p rhs. */
+    void
+    add_support_terms(
+      const double                                      increment_factor,
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   &matrix,
+      TrilinosWrappers::MPI::Vector                    &rhs,
+      const BoundaryCurve                              *only);
+
+    /** Finite strain: the supports' terms that depend on the stress of
+     * the increment @p increment (ImplicitBoundary and NitscheBoundary::
+     * add_finite_strain_terms()) of all curves, or of @p only, as internal
+     * forces into @p force and, unless nullptr, their derivative into
+     * @p tangent. Returns how many of the supports' points the increment
+     * inverts (left out). */
+    unsigned long long
+    add_finite_strain_support_terms(
+      const ConstitutiveUpdate                         &update,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const AffineConstraints<double>                  &constraints,
+      TrilinosWrappers::SparseMatrix                   *tangent,
+      TrilinosWrappers::MPI::Vector                    &force,
+      const BoundaryCurve                              *only = nullptr) const;
+
+    /** Finite strain: the share of the supports of keep_support_terms()'s
+     * curves in the internal force of the last newton_system(). */
+    std::vector<TrilinosWrappers::MPI::Vector> support_finite_strain_forces;
+
+    /** Assembles the supports' terms of keep_support_terms()'s curves. */
+    void
+    assemble_support_terms(
+      const double                                      increment_factor,
+      const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /** The weak cells the matrix was made for (make_matrix()), and the
+     * cells whose face couplings it holds: those and their neighbours. */
+    std::vector<bool> weak_cells_of_matrix;
+    std::vector<bool> coupled_faces;
+    /** Locally owned DoFs that no cell with material touches. */
+    std::vector<types::global_dof_index> unsupported_dofs;
+    unsigned int                         active_cells = 0;
+  };
+} // namespace bsmpm
+
+#endif
