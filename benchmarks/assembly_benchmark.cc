@@ -55,13 +55,13 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <bsmpm/assembly/cell_scatter.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/geometry/body_region.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
-#include <bsmpm/assembly/cell_scatter.h>
 
 #include <algorithm>
 #include <functional>

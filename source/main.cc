@@ -6,13 +6,13 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <bsmpm/analysis/scene.h>
+#include <bsmpm/analysis/strength_reduction.h>
 #include <bsmpm/io/command_line.h>
 #include <bsmpm/io/error_report.h>
 #include <bsmpm/io/mpi_start.h>
 #include <bsmpm/io/parameter_listing.h>
 #include <bsmpm/io/parameter_sweep.h>
-#include <bsmpm/analysis/scene.h>
-#include <bsmpm/analysis/strength_reduction.h>
 
 #include <boost/archive/archive_exception.hpp>
 

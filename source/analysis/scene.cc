@@ -1,9 +1,9 @@
+#include <bsmpm/analysis/scene.h>
+#include <bsmpm/analysis/strength_reduction.h>
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/io/error_report.h>
 #include <bsmpm/io/input_checks.h>
 #include <bsmpm/points/move_diagnosis.h>
-#include <bsmpm/analysis/scene.h>
-#include <bsmpm/analysis/strength_reduction.h>
 #include <bsmpm/verification/error_measures.h>
 
 #include <boost/archive/binary_iarchive.hpp>

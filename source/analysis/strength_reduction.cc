@@ -1,11 +1,11 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <bsmpm/analysis/scene.h>
+#include <bsmpm/analysis/strength_reduction.h>
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/io/error_report.h>
 #include <bsmpm/io/output_writer.h>
-#include <bsmpm/analysis/scene.h>
-#include <bsmpm/analysis/strength_reduction.h>
 #include <bsmpm/verification/verification.h>
 
 #include <cmath>

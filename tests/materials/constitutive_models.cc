@@ -31,12 +31,12 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 
+#include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/materials/constitutive_model.h>
 #include <bsmpm/materials/drucker_prager_plasticity.h>
 #include <bsmpm/materials/linear_elastic_model.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/materials/von_mises_plasticity.h>
-#include <bsmpm/assembly/constitutive_update.h>
 
 #include <cmath>
 #include <memory>

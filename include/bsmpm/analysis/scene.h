@@ -7,6 +7,8 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <bsmpm/assembly/constitutive_update.h>
+#include <bsmpm/assembly/system_assembly.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
 #include <bsmpm/boundary/implicit_boundary.h>
@@ -20,20 +22,18 @@
 #include <bsmpm/io/output_writer.h>
 #include <bsmpm/io/run_summary.h>
 #include <bsmpm/io/step_output.h>
+#include <bsmpm/linear_algebra/linear_solver.h>
 #include <bsmpm/materials/constitutive_model.h>
 #include <bsmpm/materials/material.h>
+#include <bsmpm/nonlinear/collapse_detector.h>
+#include <bsmpm/nonlinear/displacement_control.h>
+#include <bsmpm/nonlinear/increment_solver.h>
+#include <bsmpm/nonlinear/newton_solver.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/probe.h>
 #include <bsmpm/points/q1_cell_kernel.h>
-#include <bsmpm/nonlinear/collapse_detector.h>
-#include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/quadrature/cut_cell_quadrature.h>
-#include <bsmpm/nonlinear/displacement_control.h>
-#include <bsmpm/nonlinear/increment_solver.h>
-#include <bsmpm/linear_algebra/linear_solver.h>
-#include <bsmpm/nonlinear/newton_solver.h>
-#include <bsmpm/assembly/system_assembly.h>
 #include <bsmpm/verification/exact_solution.h>
 #include <bsmpm/verification/verification.h>
 

@@ -8,12 +8,12 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <bsmpm/assembly/cell_scatter.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/constitutive_model.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
-#include <bsmpm/assembly/cell_scatter.h>
 
 #include <memory>
 

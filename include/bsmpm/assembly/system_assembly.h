@@ -8,6 +8,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <bsmpm/assembly/cell_scatter.h>
+#include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
 #include <bsmpm/boundary/implicit_boundary.h>
@@ -17,8 +19,6 @@
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/q1_cell_kernel.h>
-#include <bsmpm/assembly/cell_scatter.h>
-#include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/verification/exact_solution.h>
 
 #include <memory>

@@ -6,14 +6,14 @@
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <bsmpm/assembly/constitutive_update.h>
+#include <bsmpm/assembly/system_assembly.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/geometry/background_grid.h>
-#include <bsmpm/points/material_points.h>
-#include <bsmpm/assembly/constitutive_update.h>
-#include <bsmpm/nonlinear/displacement_control.h>
 #include <bsmpm/linear_algebra/linear_solver.h>
+#include <bsmpm/nonlinear/displacement_control.h>
 #include <bsmpm/nonlinear/newton_solver.h>
-#include <bsmpm/assembly/system_assembly.h>
+#include <bsmpm/points/material_points.h>
 
 #include <limits>
 #include <string>
