@@ -57,6 +57,15 @@ public:
     return a + (b - a) * double(state >> 11) / double(1ULL << 53);
   }
 
+  /** Skips @p n numbers, as std::mt19937::discard(): a test that makes one
+   * part of a longer sequence of checks draws that part's numbers. */
+  void
+  discard(const std::uint64_t n)
+  {
+    for (std::uint64_t i = 0; i < n; ++i)
+      (*this)();
+  }
+
 private:
   std::uint64_t state;
 };
