@@ -23,14 +23,14 @@ Usage: solver_study.py --bsmpm BUILD/bsmpm [--only h,fill,tolerance]
 """
 import argparse
 import csv
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRM = os.path.join(ROOT, "prm")
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from bsmpm_run import run as run_bsmpm  # noqa: E402  (tests/bsmpm_run.py)
 
 PLATE = [os.path.join(PRM, "plate-with-hole-neumann.prm")]
 COLUMN = [os.path.join(PRM, "column-self-weight.prm"),
@@ -46,17 +46,12 @@ METHOD = "cg amg"
 
 
 def run(bsmpm, args, sets, directory):
-    command = [bsmpm] + args
-    for s in sets + [f"Linear solver/Method={METHOD}", "Output/Interval=0",
-                     f"Output/Directory={directory}",
-                     "Output/Timing summary=false"]:
-        command += ["--set", s]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.stderr.write(result.stdout[-2000:] + result.stderr[-2000:])
-        raise SystemExit("failed: " + " ".join(command))
-    with open(os.path.join(directory, "summary.json")) as f:
-        return json.load(f)
+    """summary.json of a run of @p args (a parameter file and --set
+    assignments) with @p sets."""
+    return run_bsmpm(bsmpm, args[0], arguments=args[1:], directory=directory,
+                     settings=sets + [f"Linear solver/Method={METHOD}",
+                                      "Output/Interval=0",
+                                      "Output/Timing summary=false"])
 
 
 def iterations(summary):

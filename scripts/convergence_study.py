@@ -15,36 +15,24 @@ Example:
 """
 import argparse
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))), "tests"))
+from bsmpm_run import run as run_bsmpm  # noqa: E402  (tests/bsmpm_run.py)
 
 
-def run(args, value, directory, index):
-    command = []
-    if args.mpirun > 1:
-        command += ["mpirun", "--oversubscribe", "-np", str(args.mpirun)]
-        if os.geteuid() == 0:
-            command.insert(1, "--allow-run-as-root")
-    command += [args.bsmpm, args.prm,
-                "--set", f"{args.parameter}={value}",
-                "--set", f"Output/Directory={directory}",
-                "--set", "Output/Interval=0",
-                "--set", "Output/Timing summary=false"]
-    for s in args.set:
-        command += ["--set", s]
+def run(args, value, index):
+    """summary.json of the run with the refined parameter at @p value, the
+    @p index-th of the series."""
+    settings = [f"{args.parameter}={value}", "Output/Interval=0",
+                "Output/Timing summary=false"] + args.set
     for vary in args.vary:
         name, values = vary.split("=", 1)
-        command += ["--set", f"{name}={values.split(';')[index]}"]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.stderr.write(result.stdout + result.stderr)
-        raise SystemExit(f"run with {args.parameter}={value} failed")
-    with open(os.path.join(directory, "summary.json")) as f:
-        return json.load(f)
+        settings.append(f"{name}={values.split(';')[index]}")
+    return run_bsmpm(args.bsmpm, args.prm, args.mpirun, settings)
 
 
 def main():
@@ -75,21 +63,19 @@ def main():
     values = [v.strip() for v in args.values.split(",")]
     names = [n.strip() for n in args.errors.split(",")]
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for i, value in enumerate(values):
-            runs = [run(args, value, os.path.join(tmp, f"run{i}-{k}"), i)
-                    for k in range(args.repeat)]
-            summary = min(runs, key=lambda s: s["timing"]["total"])
-            results = dict(summary["errors"])
-            results.update(summary["quantities"])
-            rows.append({"value": float(value),
-                         "n_dofs": summary["n_dofs"],
-                         "n_material_points": summary["n_material_points"],
-                         "time": summary["timing"]["total"],
-                         **{n: results.get(n, float("nan")) for n in names},
-                         **{"time " + phase: t
-                            for phase, t in summary["timing"].items()
-                            if phase != "total"}})
+    for i, value in enumerate(values):
+        runs = [run(args, value, i) for k in range(args.repeat)]
+        summary = min(runs, key=lambda s: s["timing"]["total"])
+        results = dict(summary["errors"])
+        results.update(summary["quantities"])
+        rows.append({"value": float(value),
+                     "n_dofs": summary["n_dofs"],
+                     "n_material_points": summary["n_material_points"],
+                     "time": summary["timing"]["total"],
+                     **{n: results.get(n, float("nan")) for n in names},
+                     **{"time " + phase: t
+                        for phase, t in summary["timing"].items()
+                        if phase != "total"}})
 
     header = f"{args.parameter:>28} {'dofs':>8} {'points':>9}"
     for n in names:

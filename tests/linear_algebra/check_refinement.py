@@ -12,11 +12,11 @@
    takes at least one refinement step.
 """
 import argparse
-import json
 import pathlib
-import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
 
 parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("--bsmpm", required=True)
@@ -27,21 +27,15 @@ problems = []
 
 def steps(prm, settings):
     """The steps of summary.json of a run of @p prm with @p settings."""
-    with tempfile.TemporaryDirectory() as directory:
-        command = [str(pathlib.Path(args.bsmpm).resolve()),
-                   str(pathlib.Path(args.prm_directory, prm).resolve()),
-                   "--set", f"Output/Directory={directory}",
-                   "--set", "Output/Interval=0",
-                   "--set", "Linear solver/Method=direct"]
-        for s in settings:
-            command += ["--set", s]
-        result = subprocess.run(command, capture_output=True, text=True)
-        if result.returncode != 0:
-            problems.append(f"{prm}: exit code {result.returncode}: "
-                            f"{result.stderr[-1000:]}")
-            return []
-        return json.loads((pathlib.Path(directory) / "summary.json")
-                          .read_text())["steps"]
+    summary, result = run(args.bsmpm, pathlib.Path(args.prm_directory, prm),
+                          settings=["Output/Interval=0",
+                                    "Linear solver/Method=direct"] + settings,
+                          output=True, check=False)
+    if result.returncode != 0:
+        problems.append(f"{prm}: exit code {result.returncode}: "
+                        f"{result.stderr[-1000:]}")
+        return []
+    return summary["steps"]
 
 
 footing = steps("strip-footing.prm",

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Coulomb friction on a rigid plane (tests/whole_program/contact/block_on_plane.prm).
+
+1. Stick: the block on a plane inclined by theta with tan(theta) = 0.2 <
+   mu = 0.3 stays: the run converges and the force on the plane equals the
+   block's weight, in size (rho |g| A) and direction.
+2. The same on a rough plane: nothing slides.
+3. Slip: the plane is dragged sideways by 0.02 m under the block (gravity
+   upright) while the grid's left face holds the block's left side: the
+   whole base slides, and the plane's tangential force is mu times its
+   normal force, the weight.
+4. No equilibrium: on an incline with tan(theta) = 0.5 > mu nothing holds
+   the block (a quasi-static run cannot follow it sliding away): the run
+   must fail with a message, not hang or crash.
+"""
+import argparse
+import math
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2]))
+from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
+
+parser = argparse.ArgumentParser(description=__doc__)
+parser.add_argument("--bsmpm", required=True)
+parser.add_argument("--prm", required=True)
+parser.add_argument("--np", type=int, default=1)
+args = parser.parse_args()
+rho, mu = 1000.0, 0.3
+problems = []
+
+
+def case(name, settings, expect_success=True):
+    summary, result = run(args.bsmpm, args.prm, args.np, settings,
+                          output=True, check=False)
+    if not expect_success:
+        print(f"{name}: exit code {result.returncode}; "
+              f"{result.stderr.strip()[-300:]}")
+        if result.returncode == 0:
+            problems.append(f"{name}: the run did not fail")
+        return None
+    if result.returncode != 0:
+        problems.append(f"{name}: exit code {result.returncode}: "
+                        f"{result.stdout[-1500:]} {result.stderr}")
+        return None
+    q = summary["steps"][-1]["quantities"]
+    q["body_area"] = summary["quantities"].get("body_area", q.get("body_area"))
+    print(f"{name}: force ({q['rigid_body_1_force_x']:.8g}, "
+          f"{q['rigid_body_1_force_y']:.8g}) N/m, contact "
+          f"{q['rigid_body_1_contact_length']:.6g} m, sliding "
+          f"{q['rigid_body_1_sliding_length']:.6g} m")
+    return q
+
+
+def check_weight(name, q, g):
+    weight = rho * math.hypot(*g) * q["body_area"]
+    force = math.hypot(q["rigid_body_1_force_x"], q["rigid_body_1_force_y"])
+    angle = math.atan2(q["rigid_body_1_force_x"], -q["rigid_body_1_force_y"])
+    print(f"  |F| / (rho |g| A) - 1 = {force / weight - 1:.2e}, direction "
+          f"off by {angle - math.atan2(g[0], -g[1]):.2e} rad")
+    if abs(force / weight - 1) > 1e-3:
+        problems.append(f"{name}: the force is not the weight")
+    if abs(angle - math.atan2(g[0], -g[1])) > 1e-6:
+        problems.append(f"{name}: the force is not along gravity")
+
+
+g = (1.92339, -9.61694)
+q = case("stick, frictional", [])
+if q:
+    check_weight("stick, frictional", q, g)
+q = case("stick, rough", ["Rigid body 1/Friction=rough"])
+if q:
+    check_weight("stick, rough", q, g)
+    if q["rigid_body_1_sliding_length"] != 0:
+        problems.append("stick, rough: a rough plane let the block slide")
+
+drag = ["Loading/Gravity=0, -9.81",
+        "Background grid/Lower left corner=-0.4, -0.5",
+        "Background grid/Upper right corner=1.1, 1",
+        "Background grid/Face conditions/Left=roller",
+        "Rigid body 1/Displacement=0.02*t; 0"]
+q = case("slip, dragged plane", drag)
+if q:
+    # Both forces on the plane point back and down.
+    ratio = q["rigid_body_1_force_x"] / q["rigid_body_1_force_y"]
+    print(f"  F_T / F_N = {ratio:.10g} (mu = {mu})")
+    if abs(ratio - mu) > 1e-8:
+        problems.append(f"slip: F_T / F_N = {ratio} is not mu")
+    if abs(q["rigid_body_1_sliding_length"] -
+           q["rigid_body_1_contact_length"]) > 1e-12:
+        problems.append("slip: not the whole base slides")
+    check_weight("slip, dragged plane",
+                 {**q, "rigid_body_1_force_x": 0.0}, (0.0, -9.81))
+
+case("no equilibrium", ["Loading/Gravity=4.38577, -8.77154"],
+     expect_success=False)
+
+for p in problems:
+    print("FAIL:", p)
+sys.exit(1 if problems else 0)
