@@ -172,6 +172,7 @@ namespace bsmpm
     // The tangential traction t_T T_i: T_i = -d(L s)/du_i, and while
     // sliding t_T follows p.
     state.sliding        = traction.sliding;
+    state.symmetric      = !state.sliding;
     state.tangential     = traction.tangential;
     state.sliding_length = state.sliding ? length : 0.;
     for (unsigned int i = 0; i < n; ++i)
@@ -197,7 +198,8 @@ namespace bsmpm
         const double        w = piece.weights[q] / rho;
         const double        trial_turning =
           law.trial_traction(piece.previous[q] * nq, (u[q] - rigid) * nq);
-        const double c = state.sliding ? 0. : trial_turning / L;
+        const double c  = state.sliding ? 0. : trial_turning / L;
+        state.symmetric = false;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j < n; ++j)
             state.stiffness(i, j) +=
@@ -304,6 +306,7 @@ namespace bsmpm
             const bool sliding = traction.sliding;
             t_T                = traction.tangential;
             state.sliding      = state.sliding || sliding;
+            state.symmetric    = state.symmetric && !sliding;
             state.sliding_length += sliding ? w : 0.;
             state.tangential += w * t_T;
             for (unsigned int i = 0; i < n; ++i)
@@ -323,6 +326,7 @@ namespace bsmpm
                   sliding ? 0. :
                             law.trial_traction(piece.previous[q] * nq,
                                                (u - rigid) * nq);
+                state.symmetric = false;
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
                     state.stiffness(i, j) +=

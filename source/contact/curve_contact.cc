@@ -328,7 +328,7 @@ namespace bsmpm
           terms.evaluate(piece, bodies, body_motion, grid, kernel, d);
         if (!state.active)
           continue;
-        symmetric = symmetric && !state.sliding;
+        symmetric = symmetric && state.symmetric;
         for (unsigned int i = 0; i < n; ++i)
           {
             cell_force[i] = state.force[i];

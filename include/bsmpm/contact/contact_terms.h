@@ -27,6 +27,10 @@ namespace bsmpm
   {
     bool active  = false;
     bool sliding = false;
+    /** Whether the stiffness is symmetric: not while a Gauss point slides,
+     * nor with friction where the outline turns (the tangential traction
+     * turns with the normal). */
+    bool symmetric = true;
     /** Of the part that touches, the length that slides. */
     double sliding_length = 0;
     /** Minus the mean penetration where the piece touches. */

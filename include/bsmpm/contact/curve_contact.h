@@ -123,8 +123,8 @@ namespace bsmpm
      * (ghosted; @p prescribed as for the points) to @p force and their
      * derivative (with a minus: a stiffness) to @p tangent, and, for bodies
      * under a force, the bordered terms and the bodies' residual to
-     * motion(). Returns
-     * whether the tangent stays symmetric (no Gauss point slides), over
+     * motion(). Returns whether the tangent stays symmetric (no Gauss
+     * point slides, and none with friction where the outline turns), over
      * all processes.
      */
     bool
