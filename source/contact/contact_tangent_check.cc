@@ -20,8 +20,10 @@ namespace bsmpm
     // Central differences of the force on the cell's DoFs and the body's
     // translation by each of them, against minus the stiffness.
     const double step = 1e-6 * grid.min_cell_size();
-    // p / eps is the distance to the kink: -g for the penalty,
-    // lambda / eps - g for the augmented Lagrangian.
+    // A piece that touches by less than the differences move it has the
+    // kink where it opens between them: no derivative to compare. (p / eps
+    // is the distance to the kink: -g for the penalty, lambda / eps - g for
+    // the augmented Lagrangian.)
     if (state.pressure / terms.penalty() < 10 * step)
       return std::nullopt;
     double largest = 0, difference = 0;
@@ -40,6 +42,13 @@ namespace bsmpm
             sides[side] =
               terms.evaluate(piece, bodies, motion, grid, kernel, dj, shift);
           }
+        // A Gauss point that starts or stops touching or sliding between
+        // the two sides puts a kink of the law between them.
+        for (const ContactPieceState &side : sides)
+          if (side.active != state.active ||
+              side.contact_length != state.contact_length ||
+              side.sliding_length != state.sliding_length)
+            return std::nullopt;
         const auto force = [&](const unsigned int side, const unsigned int i) {
           return sides[side].active ? sides[side].force[i] : 0.;
         };

@@ -29,8 +29,10 @@ namespace bsmpm
     /** The largest difference of the stiffness of @p state (the piece's
      * at the nodal increment @p d) from central differences of its
      * forces, relative to the stiffness's largest entry. None where the
-     * piece touches by less than the differences move it: it has the kink
-     * where it opens between them, and no derivative to compare. */
+     * differences cross a kink of the contact law, which has no derivative
+     * to compare: where the piece touches by less than they move it, or
+     * where a Gauss point starts or stops touching or sliding between them
+     * (at the edge of a stick zone). */
     static std::optional<double>
     relative_error(const ContactTerms              &terms,
                    const ContactPiece              &piece,
