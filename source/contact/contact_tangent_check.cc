@@ -67,22 +67,14 @@ namespace bsmpm
 
 
   void
-  ContactTangentCheck::check(const ContactTerms              &terms,
-                             const ContactPiece              &piece,
-                             const std::vector<RigidBody>    &bodies,
-                             const RigidBodyMotion           &motion,
-                             const BackgroundGrid            &grid,
-                             const Q1CellKernel              &kernel,
-                             const ContactPieceState         &state,
-                             const Q1CellKernel::LocalVector &d)
+  ContactTangentCheck::add(const std::optional<double> &error,
+                           const bool                   sliding)
   {
-    const std::optional<double> error =
-      relative_error(terms, piece, bodies, motion, grid, kernel, state, d);
     if (!error)
       return;
     largest_error = std::max(largest_error, *error);
     ++n_compared;
-    if (state.sliding)
+    if (sliding)
       ++n_sliding;
   }
 

@@ -1,6 +1,8 @@
 #include <bsmpm/contact/contact_terms.h>
 
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace bsmpm
 {
@@ -46,6 +48,50 @@ namespace bsmpm
 
 
 
+  Tensor<1, 2>
+  ContactTerms::shape_values(const BackgroundGrid              &grid,
+                             const Q1CellKernel                &kernel,
+                             const std::array<unsigned int, 2> &cell,
+                             const Point<2>                    &x,
+                             const Q1CellKernel::LocalVector   &d,
+                             ShapeValues                       &N)
+  {
+    constexpr unsigned int n_grid = Q1CellKernel::dofs_per_cell;
+    const Point<2>         st     = grid.local_coordinates(x, cell);
+    Tensor<1, 2>           u;
+    for (unsigned int i = 0; i < n_grid; ++i)
+      {
+        N[i] = kernel.shape_value(i, st);
+        u += d[i] * N[i];
+      }
+    N[n_grid]     = Tensor<1, 2>({-1., 0.});
+    N[n_grid + 1] = Tensor<1, 2>({0., -1.});
+    return u;
+  }
+
+
+
+  std::pair<double, double>
+  ContactTerms::mean_slip(const ContactPiece              &piece,
+                          const std::vector<Tensor<1, 2>> &u,
+                          const std::vector<SurfacePoint> &surface,
+                          const Tensor<1, 2>              &rigid,
+                          const double                     length)
+  {
+    double slip = 0, previous = 0;
+    for (unsigned int q = 0; q < piece.positions.size(); ++q)
+      if (piece.touching[q])
+        {
+          const Tensor<1, 2> &nq = surface[q].normal;
+          const Tensor<1, 2>  tq({-nq[1], nq[0]});
+          slip += piece.weights[q] * ((u[q] - rigid) * tq) / length;
+          previous += piece.weights[q] * (piece.previous[q] * tq) / length;
+        }
+    return {slip, previous};
+  }
+
+
+
   ContactPieceState
   ContactTerms::evaluate_per_cell(const ContactPiece              &piece,
                                   const RigidBody                 &body,
@@ -56,35 +102,25 @@ namespace bsmpm
                                   const Tensor<1, 2> &body_shift) const
   {
     // The cell's DoFs and, as two more, the body's translation at the
-    // increment's end: moving the body by c moves every gap as moving the
-    // point by -c does, so c enters as a DoF with the shape -e_k at every
-    // Gauss point. The extended force and stiffness give the bordered
-    // terms of a force-controlled body (RigidBodyMotion) with no other
-    // formula than the grid's.
-    constexpr unsigned int n_grid = Q1CellKernel::dofs_per_cell;
-    constexpr unsigned int n      = n_grid + 2;
-    const unsigned int     n_q    = piece.positions.size();
-    const ContactLaw       law    = this->law(body);
+    // increment's end (shape_values()): the extended force and stiffness
+    // give the bordered terms of a force-controlled body (RigidBodyMotion)
+    // with no other formula than the grid's.
+    constexpr unsigned int n   = n_dofs;
+    const unsigned int     n_q = piece.positions.size();
+    const ContactLaw       law = this->law(body);
     // Where the Gauss points are after the increment, and their gaps to
     // the part of the outline each faces.
-    std::vector<std::array<Tensor<1, 2>, n>> N(n_q);
-    std::vector<Tensor<1, 2>>                u(n_q);
-    ContactPieceState                        state;
-    std::vector<SurfacePoint>               &surface = state.surface;
+    std::vector<ShapeValues>   N(n_q);
+    std::vector<Tensor<1, 2>>  u(n_q);
+    ContactPieceState          state;
+    std::vector<SurfacePoint> &surface = state.surface;
     surface.resize(n_q);
     double length = 0;
     for (unsigned int q = 0; q < n_q; ++q)
       {
-        const Point<2> st =
-          grid.local_coordinates(piece.positions[q], piece.cell);
-        for (unsigned int i = 0; i < n_grid; ++i)
-          {
-            N[q][i] = kernel.shape_value(i, st);
-            u[q] += d[i] * N[q][i];
-          }
-        N[q][n_grid]     = Tensor<1, 2>({-1., 0.});
-        N[q][n_grid + 1] = Tensor<1, 2>({0., -1.});
-        surface[q]       = body.to_feature(piece.positions[q] + u[q],
+        u[q] =
+          shape_values(grid, kernel, piece.cell, piece.positions[q], d, N[q]);
+        surface[q] = body.to_feature(piece.positions[q] + u[q],
                                      motion.end(piece.body) + body_shift,
                                      piece.features[q]);
         if (!piece.touching[q])
@@ -100,24 +136,14 @@ namespace bsmpm
       return state;
     state.gap /= length;
 
-    // The mean slip of the touching part in the increment, relative to
-    // the rigid body, and the mean tangential traction of the last
-    // increment there: the input of Coulomb's return map.
     const Tensor<1, 2> rigid =
       motion.end(piece.body) + body_shift - motion.start(piece.body);
     ContactLaw::State history;
     history.multiplier = piece.multiplier_pressure;
     double slip        = 0;
     if (law.has_friction())
-      for (unsigned int q = 0; q < n_q; ++q)
-        if (piece.touching[q])
-          {
-            const Tensor<1, 2> &nq = surface[q].normal;
-            const Tensor<1, 2>  tq({-nq[1], nq[0]});
-            slip += piece.weights[q] * ((u[q] - rigid) * tq) / length;
-            history.previous_tangential +=
-              piece.weights[q] * (piece.previous[q] * tq) / length;
-          }
+      std::tie(slip, history.previous_tangential) =
+        mean_slip(piece, u, surface, rigid, length);
     const ContactLaw::Traction traction =
       law.evaluate(state.gap, slip, history);
     if (!traction.active)
@@ -241,30 +267,21 @@ namespace bsmpm
     // grid lines, where alternating up and down would hide from a mean
     // per cell. As in evaluate_per_cell(), the body's translation enters
     // as two more DoFs.
-    constexpr unsigned int n_grid = Q1CellKernel::dofs_per_cell;
-    constexpr unsigned int n      = n_grid + 2;
-    const ContactLaw       law    = this->law(body);
-    const Tensor<1, 2>     place  = motion.end(piece.body) + body_shift;
-    const Tensor<1, 2>     rigid  = place - motion.start(piece.body);
+    constexpr unsigned int n     = n_dofs;
+    const ContactLaw       law   = this->law(body);
+    const Tensor<1, 2>     place = motion.end(piece.body) + body_shift;
+    const Tensor<1, 2>     rigid = place - motion.start(piece.body);
     ContactPieceState      state;
     state.force.reinit(n);
     state.stiffness.reinit(n, n);
-    std::array<std::array<Tensor<1, 2>, n>, 2> N_end;
-    std::array<Tensor<1, 2>, 2>                u_end;
+    std::array<ShapeValues, 2>  N_end;
+    std::array<Tensor<1, 2>, 2> u_end;
     for (unsigned int e = 0; e < 2; ++e)
-      {
-        const Point<2> st = grid.local_coordinates(piece.ends[e], piece.cell);
-        for (unsigned int i = 0; i < n_grid; ++i)
-          {
-            N_end[e][i] = kernel.shape_value(i, st);
-            u_end[e] += d[i] * N_end[e][i];
-          }
-        N_end[e][n_grid]     = Tensor<1, 2>({-1., 0.});
-        N_end[e][n_grid + 1] = Tensor<1, 2>({0., -1.});
-      }
-    std::array<Tensor<1, 2>, n> N;
-    Vector<double>              G(n), T(n);
-    double                      length = 0;
+      u_end[e] =
+        shape_values(grid, kernel, piece.cell, piece.ends[e], d, N_end[e]);
+    ShapeValues    N;
+    Vector<double> G(n), T(n);
+    double         length = 0;
     for (unsigned int q = 0; q < piece.positions.size(); ++q)
       {
         const double w      = piece.weights[q];
@@ -371,10 +388,9 @@ namespace bsmpm
 
 
 
-  template <typename ShapeValues>
   void
   ContactTerms::add_tilt_terms(const ContactPiece              &piece,
-                               const ShapeValues               &N,
+                               const std::vector<ShapeValues>  &N,
                                const std::vector<SurfacePoint> &surface,
                                ContactPieceState               &state) const
   {

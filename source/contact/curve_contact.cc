@@ -338,8 +338,10 @@ namespace bsmpm
         constraints.distribute_local_to_global(
           stiffness, cell_force, dof_indices, tangent, force);
         if (check_tangent)
-          tangent_check.check(
-            terms, piece, bodies, body_motion, grid, kernel, state, d);
+          tangent_check.add(
+            ContactTangentCheck::relative_error(
+              terms, piece, bodies, body_motion, grid, kernel, state, d),
+            state.sliding);
         if (!bordered)
           continue;
         // A force-controlled component k of the body's translation: the

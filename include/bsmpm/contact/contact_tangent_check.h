@@ -43,17 +43,10 @@ namespace bsmpm
                    const ContactPieceState         &state,
                    const Q1CellKernel::LocalVector &d);
 
-    /** relative_error(), kept: the largest of the run, and how many
-     * pieces were compared (and of those, how many slide). */
+    /** Keeps @p error (of relative_error(), for a piece that slides or
+     * not): the largest of the run, and how many pieces were compared. */
     void
-    check(const ContactTerms              &terms,
-          const ContactPiece              &piece,
-          const std::vector<RigidBody>    &bodies,
-          const RigidBodyMotion           &motion,
-          const BackgroundGrid            &grid,
-          const Q1CellKernel              &kernel,
-          const ContactPieceState         &state,
-          const Q1CellKernel::LocalVector &d);
+    add(const std::optional<double> &error, const bool sliding);
 
     /** Gathers the figures of all processes. Collective. */
     void

@@ -15,6 +15,7 @@
 #include <bsmpm/points/q1_cell_kernel.h>
 
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace bsmpm
@@ -79,6 +80,12 @@ namespace bsmpm
   class ContactTerms
   {
   public:
+    /** The cell's DoFs and, as two more, the body's translation. */
+    static constexpr unsigned int n_dofs = Q1CellKernel::dofs_per_cell + 2;
+
+    /** Shape values on the n_dofs DoFs of a piece: as Tensor<1, 2>. */
+    using ShapeValues = std::array<Tensor<1, 2>, n_dofs>;
+
     /** For a load increment: the penalty eps (the law's), the tilt's
      * penalty (zero: none), and the gap up to which a place counts as
      * touching. */
@@ -111,6 +118,30 @@ namespace bsmpm
              const Tensor<1, 2> &body_shift = Tensor<1, 2>()) const;
 
   private:
+    /** The shape values at @p x in @p cell (into @p N) and the
+     * displacement there at the nodal increment @p d: moving the body by
+     * c moves a gap as moving the point by -c does, so the body's
+     * translation enters as two more DoFs with the shapes -e_x, -e_y. */
+    static Tensor<1, 2>
+    shape_values(const BackgroundGrid              &grid,
+                 const Q1CellKernel                &kernel,
+                 const std::array<unsigned int, 2> &cell,
+                 const Point<2>                    &x,
+                 const Q1CellKernel::LocalVector   &d,
+                 ShapeValues                       &N);
+
+    /** One pressure per cell: the mean slip, relative to the body (which
+     * moved by @p rigid in the increment), of the piece's touching part
+     * (of length @p length) at the Gauss points' displacements @p u, and
+     * the mean tangential traction of the last increment there: the
+     * inputs of Coulomb's return map. */
+    static std::pair<double, double>
+    mean_slip(const ContactPiece              &piece,
+              const std::vector<Tensor<1, 2>> &u,
+              const std::vector<SurfacePoint> &surface,
+              const Tensor<1, 2>              &rigid,
+              const double                     length);
+
     /** evaluate() with one pressure for the mean gap of the piece's
      * touching part. */
     ContactPieceState
@@ -136,10 +167,9 @@ namespace bsmpm
      * tilt of the gap along the piece's touching part (Contact/Tilt
      * penalty), @p N the shape values of the Gauss points on the cell's
      * DoFs and the body's translation. */
-    template <typename ShapeValues>
     void
     add_tilt_terms(const ContactPiece              &piece,
-                   const ShapeValues               &N,
+                   const std::vector<ShapeValues>  &N,
                    const std::vector<SurfacePoint> &surface,
                    ContactPieceState               &state) const;
 
