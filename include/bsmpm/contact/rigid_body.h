@@ -6,6 +6,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <bsmpm/contact/contact_law.h>
+
 #include <array>
 #include <limits>
 #include <memory>
@@ -98,13 +100,8 @@ namespace bsmpm
     /** Most rigid bodies in a scene. */
     static constexpr unsigned int max_bodies = 4;
 
-    /** How the body's surface resists sliding. */
-    enum class Friction
-    {
-      smooth,     ///< no tangential traction
-      frictional, ///< Coulomb: |t_T| <= mu p_N, sliding beyond
-      rough       ///< no sliding while in contact
-    };
+    /** How the body's surface resists sliding (the contact law's). */
+    using Friction = ContactLaw::Friction;
 
     /** Declares subsections "Rigid body 1" .. "Rigid body 4". */
     static void

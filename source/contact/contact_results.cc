@@ -1,0 +1,99 @@
+#include <bsmpm/contact/contact_results.h>
+
+#include <algorithm>
+#include <iomanip>
+
+namespace bsmpm
+{
+  void
+  ContactResults::reinit(const unsigned int n_bodies)
+  {
+    resultants.assign(n_bodies, Resultant());
+  }
+
+
+
+  void
+  ContactResults::collect(const std::vector<ContactPiece>      &pieces,
+                          const std::vector<ContactPieceState> &states,
+                          const MPI_Comm                        communicator)
+  {
+    const unsigned int  n_bodies = resultants.size();
+    std::vector<double> sums(4 * n_bodies, 0.);
+    std::vector<double> penetration(n_bodies, 0.);
+    piece_rows.clear();
+    for (unsigned int p = 0; p < pieces.size(); ++p)
+      {
+        const ContactPiece      &piece = pieces[p];
+        const ContactPieceState &state = states[p];
+        if (!state.active)
+          continue;
+        // The rigid body feels the opposite of what the curve feels.
+        sums[4 * piece.body + 0] -= state.resultant[0];
+        sums[4 * piece.body + 1] -= state.resultant[1];
+        sums[4 * piece.body + 2] += state.contact_length;
+        sums[4 * piece.body + 3] += state.sliding_length;
+        penetration[piece.body] = std::max(penetration[piece.body], -state.gap);
+        piece_rows.insert(piece_rows.end(),
+                          {double(piece.body + 1),
+                           state.midpoint[0],
+                           state.midpoint[1],
+                           state.gap,
+                           state.pressure,
+                           state.tangential,
+                           state.contact_length,
+                           state.sliding ? 1. : 0.});
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+    Utilities::MPI::max(penetration, communicator, penetration);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        resultants[b].force = Tensor<1, 2>({sums[4 * b + 0], sums[4 * b + 1]});
+        resultants[b].contact_length = sums[4 * b + 2];
+        resultants[b].sliding_length = sums[4 * b + 3];
+        resultants[b].penetration    = penetration[b];
+      }
+  }
+
+
+
+  void
+  ContactResults::record(const std::vector<RigidBody>  &bodies,
+                         const RigidBodyMotion         &motion,
+                         std::map<std::string, double> &quantities) const
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const std::string &name              = bodies[b].name();
+        const Tensor<1, 2> u                 = motion.end(b);
+        quantities[name + "_force_x"]        = resultants[b].force[0];
+        quantities[name + "_force_y"]        = resultants[b].force[1];
+        quantities[name + "_displacement_x"] = u[0];
+        quantities[name + "_displacement_y"] = u[1];
+        quantities[name + "_contact_length"] = resultants[b].contact_length;
+        quantities[name + "_sliding_length"] = resultants[b].sliding_length;
+        quantities[name + "_penetration"]    = resultants[b].penetration;
+      }
+  }
+
+
+
+  void
+  ContactResults::write_tractions(std::ostream  &out,
+                                  const MPI_Comm communicator) const
+  {
+    const auto all = Utilities::MPI::gather(communicator, piece_rows, 0);
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    out << "body,x,y,gap,pressure,tangential_traction,length,sliding\n"
+        << std::setprecision(10);
+    for (const auto &part : all)
+      for (unsigned int i = 0; i + 8 <= part.size(); i += 8)
+        {
+          out << static_cast<unsigned int>(part[i]);
+          for (unsigned int j = 1; j < 8; ++j)
+            out << ',' << part[i + j];
+          out << '\n';
+        }
+  }
+} // namespace bsmpm
