@@ -292,14 +292,14 @@ namespace bsmpm
           }
       }
 
-    counts["cut_cells"]           = Utilities::MPI::sum(n_cut, comm);
-    counts["body_area"]           = cut_geometry.area();
-    counts["cut_cells_fit6"]      = Utilities::MPI::sum(n_fitted[6], comm);
-    counts["cut_cells_fit3"]      = Utilities::MPI::sum(n_fitted[3], comm);
-    counts["cut_cells_fit1"]      = Utilities::MPI::sum(n_fitted[1], comm);
-    counts["cut_cells_pointless"] = n_without_all;
-    counts["outside_body_cells"]  = Utilities::MPI::sum(n_outside, comm);
-    counts["full_cells_fitted"]   = Utilities::MPI::sum(n_full_fit, comm);
+    counts["cut_cells"]            = Utilities::MPI::sum(n_cut, comm);
+    counts["body_area"]            = cut_geometry.area();
+    counts["cut_cells_fit6"]       = Utilities::MPI::sum(n_fitted[6], comm);
+    counts["cut_cells_fit3"]       = Utilities::MPI::sum(n_fitted[3], comm);
+    counts["cut_cells_fit1"]       = Utilities::MPI::sum(n_fitted[1], comm);
+    counts["body_cells_no_points"] = n_without_all;
+    counts["outside_body_cells"]   = Utilities::MPI::sum(n_outside, comm);
+    counts["full_cells_fitted"]    = Utilities::MPI::sum(n_full_fit, comm);
   }
 
 
