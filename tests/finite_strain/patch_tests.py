@@ -4,7 +4,7 @@
 A square in plane strain (Hencky, E = 1e6 Pa, nu = 0.3) on a grid of 0.25 m
 cells, rollers on the grid's left and bottom faces, a follower pressure on
 its top curve and its right side a free curve (issue 26, item 3;
-doc/finite-strain.md, "Homogeneous deformation with a moving free side"):
+doc/finite-strain.md, "Cells the points fill unevenly"):
 
   compression: a 0.9 m square, pressure 480559 Pa: lambda_y = 0.7, the free
                side moves from x = 0.9 to 1.049 (across x = 1), the top
