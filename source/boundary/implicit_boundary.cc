@@ -83,22 +83,26 @@ namespace bsmpm
       "Relative band width",
       "1e-2",
       Patterns::Double(0.),
-      "Band width delta of the D-function over the cell size h. The "
-      "consistent formulation has no O(delta) error, so a wide band costs "
-      "no accuracy and keeps the system well conditioned (the band acts "
-      "as a penalty of about E / delta, which over-constrains cut cells "
-      "when very thin; with 1e-2 CG + AMG converges); the frame and paper "
-      "forms err by O(delta) and need about 1e-6, as the paper recommends "
-      "(doc/implicit-boundary.md).");
+      "Band width delta of the D-function over the cell size h. With the "
+      "nearest-point correction (the default formulation) the band has no "
+      "error of order delta, so a wide band costs no accuracy and keeps the "
+      "system well conditioned (the condition number grows like 1 / delta, "
+      "and a very thin band over-constrains cut cells along curved supports): "
+      "keep the default. The D-scaled forms err by order delta and need about "
+      "1e-6, as the paper recommends; the paper's scenes in prm/ set 1e-6 to "
+      "compare with its figures (doc/implicit-boundary.md).");
     prm.declare_entry("Points along piece",
                       "2",
                       Patterns::Integer(1, 100),
                       "Gauss points along each curve piece for the band "
-                      "integrals (paper: 2).");
+                      "integrals; the default is the paper's. Change it only "
+                      "to study the band's quadrature.");
     prm.declare_entry("Points across band",
                       "3",
                       Patterns::Integer(1, 100),
-                      "Gauss points across the band (paper: 3).");
+                      "Gauss points across the band; the default is the "
+                      "paper's. Change it only to study the band's "
+                      "quadrature.");
     prm.declare_entry(
       "Formulation",
       "nearest-point correction",
