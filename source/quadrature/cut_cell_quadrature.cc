@@ -15,11 +15,13 @@ namespace bsmpm
       "Quadrature",
       "moment fitting",
       Patterns::Selection("moment fitting|plain"),
-      "How cells cut by the boundary are integrated. moment fitting: where "
-      "the boundary curves enclose the body, the stiffness takes the exact "
-      "moments of the cell's part inside the body and the points' stresses "
-      "are integrated with weights fitted to them (doc/cut-cells.md); "
-      "plain: the points' physical volumes, as in the paper.");
+      "How cells cut by the boundary are integrated. moment fitting (the "
+      "default): where the boundary curves enclose the body, the stiffness "
+      "takes the exact moments of the cell's part inside the body and the "
+      "points' stresses are integrated with weights fitted to them, so a "
+      "constant stress is exact whatever the points' layout "
+      "(doc/cut-cells.md); plain: the points' physical volumes, as in the "
+      "paper. Choose plain only to reproduce the paper's figures.");
     prm.leave_subsection();
   }
 
