@@ -75,8 +75,12 @@ namespace bsmpm
                       "1",
                       Patterns::Integer(1, 100000),
                       "Number of equal load increments; the load factor of "
-                      "step n is n / (load steps). At most 100000 (each "
-                      "step is a linear solve).");
+                      "step n is n / (load steps). One serves a linear "
+                      "elastic scene in small strain; nonlinear materials, "
+                      "finite strain and contact want enough steps for each "
+                      "increment to converge and to follow the load path (a "
+                      "step that does not converge is halved, Nonlinear "
+                      "solver/Maximum step cuts). At most 100000.");
     prm.declare_entry("Gravity",
                       "0, 0",
                       ParameterTools::point_pattern(),

@@ -187,30 +187,32 @@ namespace bsmpm
       "Volumetric strain",
       "B-bar",
       Patterns::Selection("B-bar|standard"),
-      "B-bar replaces the volumetric strain of every point by its mean over "
-      "the cell's material, so that neither isochoric plastic flow nor a "
-      "nearly incompressible elastic material (Poisson's ratio near 0.5) "
-      "locks the bilinear grid; standard keeps the points' own. Linear "
-      "elasticity (small strain): the in-plane split, mean of eps_xx + "
-      "eps_yy at the centroid of the cell's moments (fitted ones in cut "
-      "cells), stress C eps + (lambda + mu)(theta_mean - theta)(1, 1, 0), "
-      "also in the Nitsche and implicit-boundary terms (doc/b-bar.md). "
-      "Nonlinear models: the 3D split (zz included). Finite strain: F-bar "
-      "for nonlinear models, none for linear elasticity.");
+      "B-bar (the default) replaces the volumetric strain of every point by "
+      "its mean over the cell's material, so that neither isochoric plastic "
+      "flow nor a nearly incompressible elastic material (Poisson's ratio "
+      "near 0.5) locks the bilinear grid; standard keeps the points' own, as "
+      "the paper does, and locks there: choose it only to reproduce the "
+      "paper's kernel. Linear elasticity (small strain): the in-plane split, "
+      "mean of eps_xx + eps_yy at the centroid of the cell's moments (fitted "
+      "ones in cut cells), stress C eps + (lambda + mu)(theta_mean - "
+      "theta)(1, 1, 0), also in the Nitsche and implicit-boundary terms "
+      "(doc/b-bar.md). Nonlinear models: the 3D split (zz included). Finite "
+      "strain: F-bar for nonlinear models, none for linear elasticity.");
     prm.declare_entry(
       "Kinematics",
       "small strain",
       Patterns::Selection("small strain|finite strain"),
-      "small strain: the paper's formulation (strain increments added, "
-      "stress of the small-strain model). finite strain: updated "
+      "small strain (the default): the paper's formulation (strain increments "
+      "added, stress of the small-strain model). finite strain: updated "
       "Lagrangian, a deformation gradient per point, logarithmic (Hencky) "
       "elastic strain with the exponential map, Kirchhoff stress, point "
       "volumes det(F) V0, a pressure that follows the boundary within the "
-      "load step (doc/finite-strain.md). Finite strain always uses Newton "
-      "iterations, also for linear elasticity, and needs plane strain. "
-      "Without boundary curves, a free closed curve round the body region "
-      "is added (Curve 1), so that the cut-cell quadrature integrates the "
-      "cells the moving points fill unevenly.");
+      "load step (doc/finite-strain.md); choose it where rotations or strains "
+      "are no longer small. Finite strain always uses Newton iterations, also "
+      "for linear elasticity, and needs plane strain. Without boundary "
+      "curves, a free closed curve round the body region is added (Curve 1), "
+      "so that the cut-cell quadrature integrates the cells the moving points "
+      "fill unevenly.");
     prm.leave_subsection();
   }
 

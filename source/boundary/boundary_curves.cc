@@ -521,9 +521,14 @@ namespace bsmpm
                           "implicit boundary",
                           Patterns::Selection("implicit boundary|nitsche"),
                           "How the supports of this curve (fixed, roller, "
-                          "displacement) are imposed: by the implicit "
-                          "boundary method (paper Sec. 3.5) or by Nitsche's "
-                          "method.");
+                          "displacement, normal displacement) are imposed: by "
+                          "the implicit boundary method (paper Sec. 3.5; its "
+                          "band in 'Implicit boundary') or by Nitsche's "
+                          "method (its penalty in 'Nitsche'). Both reproduce "
+                          "a linear field that meets the support; Nitsche's "
+                          "has no band and a condition number that no band "
+                          "width raises, the implicit boundary method is the "
+                          "paper's (doc/implicit-boundary.md).");
         prm.declare_entry("Halve point volumes",
                           "false",
                           Patterns::Bool(),

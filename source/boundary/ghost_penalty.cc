@@ -15,25 +15,38 @@ namespace bsmpm
     prm.declare_entry("Enable",
                       "true",
                       Patterns::Bool(),
-                      "Stabilise cells whose material holds their DoFs "
-                      "weakly (slivers, cells with one or few points) by the "
-                      "jump of the normal derivative across their faces.");
+                      "Stabilise cells whose material holds their DoFs weakly "
+                      "(slivers, cells with one or few points, cells that a "
+                      "support crosses after their points have left) by the "
+                      "jump of the normal derivative across their faces. On "
+                      "by default; turn it off only to reproduce the paper's "
+                      "method or to study the unstabilised system, whose "
+                      "condition number grows like 1 / (fill fraction) "
+                      "(doc/stability.md).");
     prm.declare_entry("Penalty",
                       "0.02",
                       Patterns::Double(0.),
-                      "gamma in gamma E h int [du/dn] . [dv/dn] on the faces "
-                      "of a cell with a vertex that its material does not "
-                      "hold; it fades linearly to 0 at the quality "
-                      "threshold. With the defaults the condition number of "
-                      "a row of cells filled to 1e-10 stays within 4.2x of "
-                      "the full grid's, and the bias on the scenes' figures "
-                      "is in doc/stability.md.");
+                      "gamma in gamma (1 - q / q0) E h int [du/dn] . [dv/dn] "
+                      "on the faces of a cell with a vertex whose support "
+                      "quality q is below the quality threshold q0: it ties "
+                      "the field of cells that their material holds weakly to "
+                      "their neighbours', fading to 0 at the threshold. The "
+                      "default keeps the condition number of slivers near "
+                      "that of a full grid with a small bias on the results; "
+                      "a larger gamma holds weak vertices harder at a larger "
+                      "bias (doc/stability.md).");
     prm.declare_entry("Quality threshold",
                       "0.005",
                       Patterns::Double(0., 1.),
-                      "A vertex whose support quality (int |grad N|^2 over "
-                      "the material round it, against four full cells) is "
-                      "below this is stabilised.");
+                      "q0: a vertex whose support quality (int |grad N|^2 "
+                      "over the material round it, against four full cells; "
+                      "in nonlinear runs scaled by how much the points' "
+                      "tangent holds) is below this is stabilised. The "
+                      "default lies where a sliver would raise the condition "
+                      "number tenfold; raise it where weakly held vertices "
+                      "still stall Newton or let points leave the grid (every "
+                      "cut increment raises it tenfold for the rest of its "
+                      "load step).");
     prm.leave_subsection();
   }
 

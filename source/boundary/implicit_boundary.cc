@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <string>
 
 namespace bsmpm
 {
@@ -29,6 +31,46 @@ namespace bsmpm
              curve.dirichlet_method ==
                BoundaryCurve::DirichletMethod::implicit_boundary;
     }
+
+    /**
+     * The present name of a value of "Implicit boundary/Formulation": the
+     * values are named after what each form does; "consistent", "frame" and
+     * "paper" are their names of before, which parameter files written then
+     * still use.
+     */
+    std::string
+    formulation_name(const std::string &value)
+    {
+      return value == "consistent" ? "nearest-point correction" :
+             value == "frame"      ? "D-scaled" :
+             value == "paper"      ? "D-scaled with J_T" :
+                                     value;
+    }
+
+
+    /** The values of "Implicit boundary/Formulation", matched under their
+     * names of before too, which are not listed as allowed values
+     * (description() is the Selection's). */
+    class ImplicitBoundaryFormulationPattern : public Patterns::Selection
+    {
+    public:
+      ImplicitBoundaryFormulationPattern()
+        : Patterns::Selection(
+            "nearest-point correction|D-scaled|D-scaled with J_T")
+      {}
+
+      bool
+      match(const std::string &value) const override
+      {
+        return Patterns::Selection::match(formulation_name(value));
+      }
+
+      std::unique_ptr<Patterns::PatternBase>
+      clone() const override
+      {
+        return std::make_unique<ImplicitBoundaryFormulationPattern>();
+      }
+    };
   } // namespace
 
 
@@ -41,36 +83,44 @@ namespace bsmpm
       "Relative band width",
       "1e-2",
       Patterns::Double(0.),
-      "Band width delta of the D-function over the cell size h. The "
-      "consistent formulation has no O(delta) error, so a wide band costs "
-      "no accuracy and keeps the system well conditioned (the band acts "
-      "as a penalty of about E / delta, which over-constrains cut cells "
-      "when very thin; with 1e-2 CG + AMG converges); the frame and paper "
-      "forms err by O(delta) and need about 1e-6, as the paper recommends "
-      "(doc/implicit-boundary.md).");
+      "Band width delta of the D-function over the cell size h. With the "
+      "nearest-point correction (the default formulation) the band has no "
+      "error of order delta, so a wide band costs no accuracy and keeps the "
+      "system well conditioned (the condition number grows like 1 / delta, "
+      "and a very thin band over-constrains cut cells along curved supports): "
+      "keep the default. The D-scaled forms err by order delta and need about "
+      "1e-6, as the paper recommends; the paper's scenes in prm/ set 1e-6 to "
+      "compare with its figures (doc/implicit-boundary.md).");
     prm.declare_entry("Points along piece",
                       "2",
                       Patterns::Integer(1, 100),
                       "Gauss points along each curve piece for the band "
-                      "integrals (paper: 2).");
+                      "integrals; the default is the paper's. Change it only "
+                      "to study the band's quadrature.");
     prm.declare_entry("Points across band",
                       "3",
                       Patterns::Integer(1, 100),
-                      "Gauss points across the band (paper: 3).");
+                      "Gauss points across the band; the default is the "
+                      "paper's. Change it only to study the band's "
+                      "quadrature.");
     prm.declare_entry(
       "Formulation",
-      "consistent",
-      Patterns::Selection("consistent|frame|paper"),
-      "consistent: u = w - (1 - D) P w(x_b), with w(x_b) the grid field at "
-      "the boundary point nearest to x and P the identity (fixed) or n n "
-      "(roller); the band's own stiffness replaces the regular one there, "
-      "so a linear field that meets the support is reproduced exactly "
-      "whatever the band width (doc/implicit-boundary.md). frame: u = D w "
-      "(fixed) or w - (1 - D)(w.n) n (roller), band terms k2 + k2^T + k3 "
-      "added to the regular stiffness: O(delta) errors. paper: as frame, "
-      "but rollers by the band strain of eqs. 22-26 with the rotation "
-      "J_T. frame and paper are small-strain forms: refused with "
-      "Material/Kinematics = finite strain.");
+      "nearest-point correction",
+      ImplicitBoundaryFormulationPattern(),
+      "How the band turns the grid field w into the supported "
+      "displacement u. nearest-point correction (the default): u = w - (1 "
+      "- D) P (w(x_b) - g), with x_b the boundary point nearest to x, g "
+      "the prescribed value and P the identity (fixed) or n n (roller); "
+      "the band's own stiffness replaces the regular one there, so a "
+      "linear field that meets the support is reproduced exactly whatever "
+      "the band width, in small and finite strain. D-scaled: the paper's "
+      "u = D w (fixed) or w - (1 - D)(w.n) n (roller), band terms k2 + "
+      "k2^T + k3 added to the regular stiffness, errors of order delta. "
+      "D-scaled with J_T: as D-scaled, but rollers by the paper's band "
+      "strain with the rotation J_T (eqs. 22-26). Change it only to "
+      "reproduce the paper's figures: the D-scaled forms are small-strain "
+      "forms (refused with Material/Kinematics = finite strain) and "
+      "cannot impose a normal displacement (doc/implicit-boundary.md).");
     prm.leave_subsection();
   }
 
@@ -83,10 +133,10 @@ namespace bsmpm
     relative_band_width    = prm.get_double("Relative band width");
     points_along           = prm.get_integer("Points along piece");
     points_across          = prm.get_integer("Points across band");
-    const std::string form = prm.get("Formulation");
-    formulation            = form == "consistent" ? Formulation::consistent :
-                             form == "frame"      ? Formulation::frame :
-                                                    Formulation::paper;
+    const std::string form = formulation_name(prm.get("Formulation"));
+    formulation = form == "nearest-point correction" ? Formulation::consistent :
+                  form == "D-scaled"                 ? Formulation::frame :
+                                                       Formulation::paper;
     prm.leave_subsection();
     AssertThrow(relative_band_width > 0 && relative_band_width <= 1,
                 ExcMessage("Implicit boundary: the relative band width must "
@@ -146,12 +196,13 @@ namespace bsmpm
               condition.kind != CurveCondition::Kind::normal_displacement,
               ExcMessage(
                 condition.where +
-                ": 'normal displacement' is implemented for the consistent "
-                "formulation of the implicit boundary method only (the "
-                "frame and paper forms impose a displacement through nodal "
-                "values fitted to both of its components). Set 'Implicit "
-                "boundary/Formulation = consistent' or the curve's "
-                "'Dirichlet method = nitsche'."));
+                ": 'normal displacement' is implemented for the "
+                "nearest-point correction of the implicit boundary method "
+                "only (the D-scaled forms impose a displacement through "
+                "nodal values fitted to both of its components). Set "
+                "'Implicit boundary/Formulation = nearest-point "
+                "correction' or the curve's 'Dirichlet method = "
+                "nitsche'."));
     // The frame and paper forms pair the band's field with the elastic
     // stiffness and the stress of the step's start: small-strain terms,
     // O(delta) errors even there, kept to reproduce the paper. In finite
@@ -164,12 +215,13 @@ namespace bsmpm
         !curves.has_supports(BoundaryCurve::DirichletMethod::implicit_boundary),
         ExcMessage(
           "Implicit boundary/Formulation = " +
-          std::string(formulation == Formulation::frame ? "frame" : "paper") +
+          std::string(formulation == Formulation::frame ? "D-scaled" :
+                                                          "D-scaled with J_T") +
           " keeps the small-strain band terms (the elastic stiffness "
           "and the stress of the step's start) and is not right with "
           "'Material/Kinematics = finite strain'. Set 'Implicit "
-          "boundary/Formulation = consistent' (the default, exact in "
-          "finite strain) or the curves' 'Dirichlet method = "
+          "boundary/Formulation = nearest-point correction' (the default, "
+          "exact in finite strain) or the curves' 'Dirichlet method = "
           "nitsche'."));
     points.clear();
     last_increment_factor = increment_factor;

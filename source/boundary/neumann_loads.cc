@@ -14,7 +14,9 @@ namespace bsmpm
                       "4",
                       Patterns::Integer(1, 100),
                       "Gauss points on every piece of a loaded curve in a "
-                      "grid cell (the paper uses 4).");
+                      "grid cell (the paper uses 4). More for tractions that "
+                      "vary strongly within a cell or curves that bend "
+                      "strongly within one.");
     prm.leave_subsection();
   }
 

@@ -37,14 +37,18 @@ namespace bsmpm
       "Penalty",
       "100",
       Patterns::Double(0.),
-      "gamma in the penalty gamma max(E, kappa) / h of Nitsche's "
-      "method, kappa = lambda + mu the in-plane bulk modulus "
-      "(E unless the material is nearly incompressible in "
-      "plane strain, nu > 0.3).");
+      "gamma in the penalty gamma max(E, kappa) / h of Nitsche's method, "
+      "kappa = lambda + mu the in-plane bulk modulus (E unless the material "
+      "is nearly incompressible in plane strain, nu > 0.3). The method is "
+      "consistent, so gamma only has to be large enough for coercivity: keep "
+      "the default; far larger values raise the condition number, far smaller "
+      "ones lose coercivity (doc/implicit-boundary.md).");
     prm.declare_entry("Gauss points per piece",
                       "4",
                       Patterns::Integer(1, 100),
-                      "Gauss points on each piece of a supported curve.");
+                      "Gauss points on each piece of a supported curve, as "
+                      "for the loads; more where the curve bends strongly "
+                      "within a cell.");
     prm.leave_subsection();
   }
 

@@ -31,69 +31,61 @@ namespace bsmpm
       Patterns::Double(0.),
       "gamma in the contact penalty eps = gamma max(E, kappa) / h: the "
       "pressure per unit penetration, and the tangential traction per unit "
-      "slip while sticking. With Method = penalty the penetration is about "
-      "p h / (gamma E); with the augmented Lagrangian the penetration goes "
-      "to zero and gamma sets how fast the updates converge. Above about "
-      "20 the pressure of one cell per piece is over-constrained and "
-      "alternates from cell to cell under a flat rigid base "
+      "slip while sticking. With Method = penalty the penetration is about p "
+      "h / (gamma E); with the augmented Lagrangian the mean penetration goes "
+      "to zero and gamma sets how fast the updates converge. Keep it at most "
+      "about 20: larger values over-constrain one pressure per cell under a "
+      "flat rigid base, whose pressures then alternate from cell to cell "
       "(doc/contact.md).");
     prm.declare_entry(
       "Pressure",
       "automatic",
       Patterns::Selection("automatic|per cell|at grid lines"),
-      "Where the contact pressure is taken (doc/contact.md, 'Pressures at "
-      "the grid lines'). 'per cell': one pressure for the mean gap of the "
-      "part of each cell's piece of curve that touches. 'at grid lines': "
-      "the curve's displacement taken where it crosses the grid lines and "
-      "linear between them, a pressure at every Gauss point of that gap "
-      "and multipliers at the crossings: the gap is held where the "
-      "bilinear displacement has its values on the curve, which one "
-      "pressure per cell leaves free to move in and out in turn under a "
-      "flat rigid base (plastic soil hardly resists that). 'automatic': "
-      "per cell in small strain (closer to the imposed footing at coarse "
-      "grids: 0.55 % against 2.1 % below it at h = 0.125), at grid lines in "
-      "finite strain (a deep penetration at h = 0.125 reached u/B = 0.475 "
-      "instead of 0.23).");
+      "Where the contact pressure is taken (doc/contact.md). 'per cell': one "
+      "pressure for the mean gap of the touching part of each cell's piece of "
+      "curve. 'at grid lines': the curve's displacement taken where it "
+      "crosses the grid lines and linear between them, a pressure at every "
+      "Gauss point of that gap and multipliers at the crossings; it holds the "
+      "grid nodes under a flat rigid base, which one pressure per cell leaves "
+      "free to move in and out in turn (plastic soil in flow hardly resists "
+      "that), but holds a body's edge in the middle of a cell more weakly. "
+      "'automatic' (the default): per cell in small strain, at grid lines in "
+      "finite strain.");
     prm.declare_entry(
       "Tilt penalty",
       "0",
       Patterns::Double(0.),
-      "Experimental: a penalty on the tilt of the gap along the touching "
-      "part of a piece (the linear part of the gap, whose mean takes "
-      "'Penalty'), as a factor of that penalty (1: the gap's projection on "
-      "linear functions along the piece as a whole; 0: off, one pressure "
-      "per cell). One pressure per cell leaves the grid nodes under a flat "
-      "rigid body free to move up and down in turn with zero mean gap in "
-      "every cell, which plastic soil does not resist. Its force does not "
-      "yet vanish where a piece's mean gap passes zero, and deep "
-      "penetrations with it fail at other steps (doc/contact.md, 'The "
-      "tilt of the gap').");
+      "Experimental; leave it at 0 (off). A penalty on the tilt of the gap "
+      "along the touching part of a piece, as a factor of 'Penalty' (1: the "
+      "gap's projection on linear functions along the piece as a whole), "
+      "aimed at the alternating mode that 'Pressure = at grid lines' holds; "
+      "its force jumps where a piece's mean gap passes zero (doc/contact.md).");
     prm.declare_entry(
       "Method",
       "automatic",
       Patterns::Selection("automatic|augmented Lagrangian|penalty"),
       "How contact is imposed on the curves' pieces (doc/contact.md). "
-      "'penalty': the pressure eps times the mean penetration of a piece "
-      "(eps = Penalty max(E, kappa) / h): the body penetrates by about "
-      "p h / (Penalty E). 'augmented Lagrangian': the same penalty with a "
-      "multiplier per piece, p = max(0, lambda - eps g), updated (Uzawa) "
-      "after each converged Newton solve of the load step until the force "
-      "on every rigid body changes by less than the Augmentation "
-      "tolerance: the penetration goes to zero. Both hold sticking "
-      "friction by the penalty (eps per unit slip). 'automatic': the "
-      "augmented Lagrangian in small strain (the elastic strip footing "
-      "within 0.8 % of the imposed one, against 1.3-4 % with the penalty), "
-      "the penalty in finite strain (there the updates did not converge "
-      "where the curve slides round a footing's corner, and a deep "
-      "penetration that completes with the penalty failed at u/B = 0.39).");
+      "'penalty': a pressure eps times the penetration (eps = Penalty max(E, "
+      "kappa) / h): the body penetrates by about p h / (Penalty E). "
+      "'augmented Lagrangian': the same penalty with multipliers, updated "
+      "after each converged Newton solve of the load step until the force on "
+      "every rigid body changes by less than the Augmentation tolerance: the "
+      "mean penetration goes to zero, at the cost of a few more solves per "
+      "step. Both hold sticking friction by the penalty. 'automatic' (the "
+      "default): the augmented Lagrangian in small strain, the penalty in "
+      "finite strain, where the augmentations may not converge as a curve "
+      "slides round a body's corner. Choose 'penalty' for a cheaper run whose "
+      "small penetration does not matter.");
     prm.declare_entry(
       "Augmentation tolerance",
       "1e-4",
       Patterns::Double(0., 1.),
-      "The augmented Lagrangian stops updating the multipliers of a load "
-      "step when the force on every rigid body (for a body under a Force: "
-      "its motion in the step) has changed by less than this fraction of "
-      "it in the last update.");
+      "The augmented Lagrangian stops updating the multipliers of a load step "
+      "when the force on every rigid body (for a body under a Force: its "
+      "motion in the step) has changed by less than this fraction of it in "
+      "the last update. Lower it for forces closer to the exact mean gaps at "
+      "the cost of more solves; much lower values may not be reached (the "
+      "updates stop at 'Maximum augmentations').");
     prm.declare_entry(
       "Maximum augmentations",
       "30",
@@ -106,7 +98,8 @@ namespace bsmpm
                       "4",
                       Patterns::Integer(1, 100),
                       "Gauss points on each piece of a free curve that can "
-                      "touch a rigid body.");
+                      "touch a rigid body; more for strongly curved outlines "
+                      "or pieces.");
     prm.leave_subsection();
     RigidBody::declare_parameters(prm);
   }

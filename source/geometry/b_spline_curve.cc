@@ -470,7 +470,7 @@ namespace bsmpm
     // searched in their order as before, so the answer is the same to the
     // bit (among equally near points the first segment's), in a fraction of
     // the time where a curve has many segments (trimming material points:
-    // doc/benchmarks.md, "The fixed costs of a linear run").
+    // doc/changes/2026-12-03-fixed-costs-of-a-linear-run.md).
     const unsigned int n           = n_segments();
     unsigned int       first       = 0;
     double             nearest_box = std::numeric_limits<double>::max();

@@ -28,14 +28,18 @@ namespace bsmpm
                       "1",
                       Patterns::Integer(0),
                       "Write ParaView files every this many load steps (and "
-                      "after the last); 0 writes none and costs nothing.");
+                      "after the last); 0 writes none and costs nothing, for "
+                      "runs of which only summary.json is wanted (studies, "
+                      "benchmarks).");
     prm.declare_entry("Compression",
                       "fast",
                       Patterns::Selection("fast|best|none"),
                       "zlib compression of the ParaView (.vtu) files: fast "
-                      "writes 676 k points 12 times faster than best for "
-                      "files 2 % larger (doc/benchmarks.md); none is faster "
-                      "still, for files about twice as large.");
+                      "(the default) writes quickly, files nearly as small as "
+                      "best's; best, the smallest files, many times slower to "
+                      "write; none, the fastest to write and the largest "
+                      "files. Choose best for files to keep, none when disk "
+                      "space does not matter (doc/benchmarks.md).");
     prm.declare_entry("Timing summary",
                       "true",
                       Patterns::Bool(),

@@ -27,70 +27,76 @@ namespace bsmpm
       "Method",
       "automatic",
       Patterns::Selection("direct|cg amg|cg gmg|automatic"),
-      "direct: sparse LU (MUMPS, else KLU); cg amg: conjugate "
-      "gradients with algebraic multigrid (Trilinos ML); cg "
-      "gmg: conjugate gradients with a geometric multigrid "
-      "V-cycle on the uniform grid (coarse grids of half the "
-      "cells per direction while both counts are even, "
-      "Galerkin coarse operators, Chebyshev-Jacobi "
-      "smoother); automatic: direct up to 'Automatic "
-      "threshold' unknowns, above cg gmg if the grid can be "
-      "coarsened at least once (even cell counts, more than "
-      "'Multigrid coarse size' unknowns), else cg amg (and "
-      "direct if CG does not converge; a multigrid that fails to set up or "
-      "converge hands the solve to cg amg, which says so in the step "
-      "table). Unsymmetric systems take GMRES "
-      "with the same preconditioner.");
+      "direct: a sparse factorisation (MUMPS: L D L^T of symmetric systems, "
+      "LU of others; KLU where MUMPS is missing; on several processes each "
+      "factorises its own unknowns and process 0 the seams); cg amg: "
+      "conjugate gradients with algebraic multigrid (Trilinos ML); cg gmg: "
+      "conjugate gradients with a geometric multigrid V-cycle on the uniform "
+      "grid (coarse grids of half the cells per direction while both counts "
+      "are even, Galerkin coarse operators, Chebyshev-Jacobi smoother); "
+      "automatic (the default): direct up to 'Automatic threshold' unknowns, "
+      "above cg gmg if the grid can be coarsened at least once (even cell "
+      "counts, more than 'Multigrid coarse size' unknowns), else cg amg, and "
+      "direct if CG does not converge or needs more than 'Automatic iteration "
+      "limit' (a multigrid that fails to set up or converge hands the solve "
+      "to cg amg; the step table says which). Unsymmetric systems take GMRES "
+      "with the same preconditioner. Choose direct for small or "
+      "ill-conditioned systems, an iterative method where the factors would "
+      "not fit in memory (doc/linear-solvers.md).");
     prm.declare_entry(
       "Tolerance",
       "automatic",
       Patterns::Anything(),
-      "cg amg, cg gmg: stop when the residual is below this fraction "
-      "of the right-hand side: a number of at least 1e-15 "
-      "(below round-off CG would iterate on into underflow "
-      "and a division by zero), or automatic: tied to the "
-      "discretisation error, min(1e-8, 1.5e-3 (h/L)^2) with "
-      "h the diameter of a cell and L that of the grid, "
-      "which keeps the errors of the scenes within 1e-6 of "
-      "an exact solve's (measured, doc/benchmarks.md).");
+      "cg amg, cg gmg: stop when the residual is below this fraction of the "
+      "right-hand side: a number of at least 1e-15 (below round-off CG would "
+      "iterate on into underflow), or automatic (the default): tied to the "
+      "discretisation error, min(1e-8, 1.5e-3 (h/L)^2) with h the diameter of "
+      "a cell and L that of the grid, so that the algebraic error stays far "
+      "below the discretisation error. A number for studies of the algebraic "
+      "error (doc/linear-solvers.md).");
     prm.declare_entry("Preconditioner reuse",
                       "whole",
                       Patterns::Selection("none|aggregates|whole"),
                       "cg amg, cg gmg: what a solve takes over from the "
                       "multigrid hierarchy of the previous one when the "
-                      "matrix has the same nonzero structure (the same "
-                      "active cells and constraints): none (a new hierarchy "
-                      "every solve), aggregates (ML's aggregates, or the "
-                      "geometric prolongations, kept, the coarse operators "
-                      "and smoothers recomputed from the new values) or "
-                      "whole (the previous preconditioner as it is). A "
+                      "matrix has the same nonzero structure (the same active "
+                      "cells and constraints): none (a new hierarchy every "
+                      "solve), aggregates (ML's aggregates, or the geometric "
+                      "prolongations, kept, the coarse operators and "
+                      "smoothers recomputed from the new values) or whole "
+                      "(the default: the previous preconditioner as it is). A "
                       "reused one that needs many more iterations than when "
-                      "it was new is replaced.");
+                      "it was new is replaced, so whole rarely costs more "
+                      "than the others; aggregates or none where the matrix's "
+                      "values change much between solves.");
     prm.declare_entry("Maximum iterations",
                       "10000",
                       Patterns::Integer(1),
-                      "cg amg, cg gmg: iteration limit.");
+                      "cg amg, cg gmg: the iteration limit of a solve; in "
+                      "automatic mode a solve that does not converge within "
+                      "it hands over to the next method (cg amg, then "
+                      "direct).");
     prm.declare_entry("Multigrid smoother degree",
                       "3",
                       Patterns::Integer(1, 20),
-                      "cg gmg: degree of the Chebyshev smoother (matrix-"
-                      "vector products per smoothing step on each level).");
+                      "cg gmg: degree of the Chebyshev smoother "
+                      "(matrix-vector products per smoothing step on each "
+                      "level). Higher degrees take fewer CG iterations at a "
+                      "higher cost each.");
     prm.declare_entry(
       "Multigrid smoother",
       "jacobi",
       Patterns::Selection("jacobi|vertex patch|cell patch|large patch"),
       "cg gmg: what the Chebyshev smoother is preconditioned by on each "
-      "level: jacobi (the inverse diagonal), or additive Schwarz over "
-      "patches whose blocks of the level's matrix are inverted at set-up: "
-      "vertex patch (the 2 x 2 cells around each vertex, 18 unknowns), "
-      "cell patch (the 4 vertices of each cell, 8 unknowns) or large patch "
-      "(the 3 x 3 cells around each cell, 32 unknowns). On yielding "
-      "(plastic) tangents the vertex and cell patches need 3-4x and "
-      "2.5-3x fewer CG iterations than jacobi, but cost more per "
-      "iteration: the cell patch about as much time as jacobi, the vertex "
-      "patch up to twice; neither beat the direct solver on the plastic "
-      "footing or cylinder at h = 1/16 and 1/32 (measured, "
-      "doc/benchmarks.md).");
+      "level: jacobi (the inverse diagonal, the default), or additive Schwarz "
+      "over patches whose blocks of the level's matrix are inverted at "
+      "set-up: vertex patch (the 2 x 2 cells around each vertex, 18 "
+      "unknowns), cell patch (the 4 vertices of each cell, 8 unknowns) or "
+      "large patch (the 3 x 3 cells around each cell, 32 unknowns). The "
+      "patches need several times fewer CG iterations on the tangents of "
+      "yielding material but cost more per iteration; choose one for such "
+      "runs that must stay iterative (Method = cg gmg, no memory for "
+      "factors), else keep jacobi (doc/linear-solvers.md).");
     prm.declare_entry("Multigrid patch levels",
                       "0",
                       Patterns::Integer(0),
@@ -100,28 +106,29 @@ namespace bsmpm
     prm.declare_entry("Multigrid coarse size",
                       "2000",
                       Patterns::Integer(1),
-                      "cg gmg: a level with at most this many unknowns is "
-                      "not coarsened further but factorised (KLU).");
+                      "cg gmg: a level with at most this many unknowns is not "
+                      "coarsened further but factorised (KLU). Larger values "
+                      "make fewer, more expensive levels.");
     prm.declare_entry(
       "Automatic threshold",
       "1000",
       Patterns::Integer(0),
-      "automatic: number of unknowns above which CG + "
-      "multigrid replaces the direct solver (measured crossover on the "
-      "plate scene: AMG 1.2x faster at 1250 unknowns, 3.3x "
-      "at 74k, doc/benchmarks.md).");
+      "automatic: the number of unknowns above which CG with a multigrid "
+      "replaces the direct solver; below it a factorisation is the cheaper "
+      "solve. Rarely worth changing (doc/linear-solvers.md).");
     prm.declare_entry(
       "Automatic iteration limit",
       "50",
       Patterns::Integer(0),
-      "automatic: a CG (GMRES) solve of 100 k unknowns that needs more "
-      "than this many iterations makes the later solves of the run direct, "
-      "up to a million unknowns (the step table says 'cg slow' once); for "
-      "n unknowns the limit is scaled by sqrt(n / 100 k), and not below "
-      "half of it. In two dimensions a factorisation costs about 25 "
-      "multigrid-preconditioned CG iterations at 25 k unknowns and 50 at "
-      "100 k (measured on plastic footings, doc/benchmarks.md): the nearly "
-      "singular tangents of yielding material need hundreds. 0: never.");
+      "automatic: a CG (GMRES) solve of 100 k unknowns that needs more than "
+      "this many iterations makes the later solves of the run direct, up to a "
+      "million unknowns (the step table says 'cg slow' once); for n unknowns "
+      "the limit is scaled by sqrt(n / 100 k), as a two-dimensional "
+      "factorisation (about n^1.5) against a CG iteration (about n) suggests, "
+      "and not below half of it. Linear scenes stay iterative; the nearly "
+      "singular tangents of yielding material go direct after their first "
+      "slow solve. 0: never switch (to keep a run iterative, e.g. for "
+      "memory); lower it to leave CG sooner (doc/linear-solvers.md).");
     prm.declare_entry("Estimate condition number",
                       "false",
                       Patterns::Bool(),

@@ -36,7 +36,10 @@ namespace bsmpm
     prm.declare_entry("Model",
                       "plane strain",
                       Patterns::Selection("plane strain|plane stress"),
-                      "Two-dimensional idealisation of the body.");
+                      "Two-dimensional idealisation of the body: plane strain "
+                      "(the default; needed by the plastic models and by "
+                      "finite strain) or plane stress (linear elasticity in "
+                      "small strain only).");
     prm.declare_entry(
       "Density",
       "0",

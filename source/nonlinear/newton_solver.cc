@@ -15,18 +15,25 @@ namespace bsmpm
                       "20",
                       Patterns::Integer(1, 1000),
                       "Newton iterations per load increment before the "
-                      "increment counts as failed and is cut.");
+                      "increment counts as failed and is cut. More where "
+                      "Newton converges slowly but steadily (perfectly "
+                      "plastic plateaus).");
     prm.declare_entry("Residual tolerance",
                       "1e-9",
                       Patterns::Double(0, 1),
                       "Converged when the residual has fallen below this "
-                      "fraction of its value at the start of the "
-                      "increment.");
+                      "fraction of its value for a zero increment (the "
+                      "out-of-balance force of the load increment). The "
+                      "default lies above round-off; a looser one saves "
+                      "iterations on perfectly plastic plateaus and moves the "
+                      "results with it (doc/newton.md).");
     prm.declare_entry("Maximum step cuts",
                       "6",
                       Patterns::Integer(0, 30),
-                      "How many times a load increment that does not "
-                      "converge may be halved before the run stops.");
+                      "How many times a load increment that does not converge "
+                      "may be halved before the run stops (or, under a "
+                      "prescribed load, reports its limit load). More load "
+                      "steps are often the better remedy than more cuts.");
     prm.declare_entry(
       "Stall tolerance",
       "1e-2",
@@ -41,21 +48,23 @@ namespace bsmpm
     prm.declare_entry("Line search steps",
                       "5",
                       Patterns::Integer(0, 30),
-                      "How many times a Newton correction that does not "
-                      "lower the residual may be halved (0: full steps).");
+                      "How many times a Newton correction that does not lower "
+                      "the residual may be halved (0: full steps). The line "
+                      "search keeps Newton from overshooting where points "
+                      "unload; keep it on.");
     prm.declare_entry(
       "Predictor",
       "automatic",
       Patterns::Selection("automatic|tangent|last increment"),
       "Where the Newton iterations of a load increment start (the first "
-      "increment of a run starts from zero). 'tangent': from zero, the "
-      "first correction taken with the tangent of the last converged state "
-      "(the points that yielded in the last increment load plastically): "
-      "a forward Euler step. 'last increment': the last converged "
-      "increment scaled to this one (zero where that leaves a residual ten "
-      "times that of zero). 'automatic': tangent in small strain, last "
-      "increment in finite strain (where the last increment carries the "
-      "rotations). doc/newton.md compares them.");
+      "increment of a run starts from zero). 'tangent': from zero, the first "
+      "correction taken with the tangent of the last converged state (the "
+      "points that yielded in the last increment load plastically): a forward "
+      "Euler step. 'last increment': the last converged increment scaled to "
+      "this one (zero where that leaves a residual ten times that of zero). "
+      "'automatic' (the default): tangent in small strain, last increment in "
+      "finite strain (where the last increment carries the rotations). Change "
+      "it only to compare the starts (doc/newton.md).");
     prm.leave_subsection();
   }
 

@@ -15,11 +15,13 @@ namespace bsmpm
       "Quadrature",
       "moment fitting",
       Patterns::Selection("moment fitting|plain"),
-      "How cells cut by the boundary are integrated. moment fitting: where "
-      "the boundary curves enclose the body, the stiffness takes the exact "
-      "moments of the cell's part inside the body and the points' stresses "
-      "are integrated with weights fitted to them (doc/cut-cells.md); "
-      "plain: the points' physical volumes, as in the paper.");
+      "How cells cut by the boundary are integrated. moment fitting (the "
+      "default): where the boundary curves enclose the body, the stiffness "
+      "takes the exact moments of the cell's part inside the body and the "
+      "points' stresses are integrated with weights fitted to them, so a "
+      "constant stress is exact whatever the points' layout "
+      "(doc/cut-cells.md); plain: the points' physical volumes, as in the "
+      "paper. Choose plain only to reproduce the paper's figures.");
     prm.leave_subsection();
   }
 
@@ -292,14 +294,14 @@ namespace bsmpm
           }
       }
 
-    counts["cut_cells"]           = Utilities::MPI::sum(n_cut, comm);
-    counts["body_area"]           = cut_geometry.area();
-    counts["cut_cells_fit6"]      = Utilities::MPI::sum(n_fitted[6], comm);
-    counts["cut_cells_fit3"]      = Utilities::MPI::sum(n_fitted[3], comm);
-    counts["cut_cells_fit1"]      = Utilities::MPI::sum(n_fitted[1], comm);
-    counts["cut_cells_pointless"] = n_without_all;
-    counts["outside_body_cells"]  = Utilities::MPI::sum(n_outside, comm);
-    counts["full_cells_fitted"]   = Utilities::MPI::sum(n_full_fit, comm);
+    counts["cut_cells"]            = Utilities::MPI::sum(n_cut, comm);
+    counts["body_area"]            = cut_geometry.area();
+    counts["cut_cells_fit6"]       = Utilities::MPI::sum(n_fitted[6], comm);
+    counts["cut_cells_fit3"]       = Utilities::MPI::sum(n_fitted[3], comm);
+    counts["cut_cells_fit1"]       = Utilities::MPI::sum(n_fitted[1], comm);
+    counts["body_cells_no_points"] = n_without_all;
+    counts["outside_body_cells"]   = Utilities::MPI::sum(n_outside, comm);
+    counts["full_cells_fitted"]    = Utilities::MPI::sum(n_full_fit, comm);
   }
 
 

@@ -190,8 +190,7 @@ namespace
         // are round-off whose size depends on the order of the sums, and
         // at three processes the gathered factorisation, to which the
         // subdomains fall back when they find S singular, took one for a
-        // pivot (doc/benchmarks.md, "The direct solve on several
-        // processes").
+        // pivot (doc/changes/2026-12-03-direct-solve-per-process.md).
         if (symmetric && cells_y == 1)
           {
             assemble(dofs, matrix, 0., 0.);

@@ -37,7 +37,7 @@ namespace bsmpm
    *   held
    *   (method-notes Sec. 5: the boundary-frame form, exact on inclined
    *   boundaries). The paper's form with the rotation J_T of eq. 26 is
-   *   available as "Roller form = paper".
+   *   available as "Formulation = D-scaled with J_T".
    *
    * The material points integrate the regular stiffness (D = 1 there); the
    * band adds k2 + k2^T + k3 of eqs. 21-28, integrated per curve piece with
@@ -152,7 +152,7 @@ namespace bsmpm
     /**
      * Whether prescribed displacements go through nodal values d^a fitted
      * by least squares (fit_prescribed_displacement(), the paper's eq. 36:
-     * frame and paper formulations). The consistent formulation imposes
+     * the D-scaled formulations). The consistent formulation imposes
      * the prescribed value g on the boundary itself, u = w + (1 - D)(g -
      * w(x_b)), and needs no fit.
      */

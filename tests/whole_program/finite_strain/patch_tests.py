@@ -4,7 +4,7 @@
 A square in plane strain (Hencky, E = 1e6 Pa, nu = 0.3) on a grid of 0.25 m
 cells, rollers on the grid's left and bottom faces, a follower pressure on
 its top curve and its right side a free curve (issue 26, item 3;
-doc/finite-strain.md, "Homogeneous deformation with a moving free side"):
+doc/finite-strain.md, "Cells the points fill unevenly"):
 
   compression: a 0.9 m square, pressure 480559 Pa: lambda_y = 0.7, the free
                side moves from x = 0.9 to 1.049 (across x = 1), the top
@@ -285,8 +285,8 @@ def main():
                 error = max(errors["A_sigma_" + c] / scale
                             for c in ("xx", "yy", "xy"))
             worst = max(worst, error)
-            pointless = summary.get("quantities", summary).get(
-                "cut_cells_pointless", 0)
+            no_points = summary.get("quantities", summary).get(
+                "body_cells_no_points", 0)
             # Newton iterations of the accepted attempts, and load steps
             # cut.
             newton = sum(len(step.get("newton_residuals", [0])) - 1
@@ -294,7 +294,7 @@ def main():
             cuts = sum(step.get("increments", 1) - 1
                        for step in summary.get("steps", []))
             print(f"{name}: stress error {error:7.1e} "
-                  f"(pointless cut cells at the end {pointless:g}, "
+                  f"(body cells without points at the end {no_points:g}, "
                   f"Newton iterations {newton}, cuts {cuts})",
                   flush=True)
             if not error <= BOUND:
