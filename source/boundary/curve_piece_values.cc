@@ -7,7 +7,6 @@ namespace bsmpm
                                      const Quadrature<1>  &quadrature)
     : grid(grid)
     , quadrature(quadrature)
-    , current{nullptr, 0, nullptr, nullptr, grid.dof_handler().end()}
     , parameters(quadrature.size())
     , positions(quadrature.size())
     , lengths(quadrature.size())
@@ -34,7 +33,7 @@ namespace bsmpm
             continue;
           const auto cell = grid.locally_owned_cell(piece.cell);
           if (cell != grid.dof_handler().end())
-            result.push_back({&all[c], c, &piece, condition, cell});
+            result.push_back({piece, &all[c], c, condition, cell});
         }
     return result;
   }
@@ -60,19 +59,18 @@ namespace bsmpm
   {
     current                   = piece;
     const BSplineCurve &curve = *piece.curve->spline;
-    const CurvePiece   &p     = *piece.piece;
-    const double        du    = p.u_end - p.u_begin;
+    const double        du    = piece.u_end - piece.u_begin;
     for (unsigned int q = 0; q < quadrature.size(); ++q)
       {
-        const double       u = p.u_begin + quadrature.point(q)[0] * du;
+        const double       u = piece.u_begin + quadrature.point(q)[0] * du;
         const Tensor<1, 2> d = curve.derivative(u);
         parameters[q]        = u;
         positions[q]         = curve.value(u);
         lengths[q]           = d.norm() * du * quadrature.weight(q);
         normals[q]           = curve.outward_normal(u);
         tangents[q]          = d / d.norm();
-        cell_coordinates[q]  = grid.local_coordinates(positions[q], p.cell);
+        cell_coordinates[q]  = grid.local_coordinates(positions[q], piece.cell);
       }
-    piece.cell->get_dof_indices(cell_dof_indices);
+    piece.owned_cell->get_dof_indices(cell_dof_indices);
   }
 } // namespace bsmpm

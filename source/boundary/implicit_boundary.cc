@@ -34,6 +34,17 @@ namespace bsmpm
 
 
 
+  BSMPM_REGISTER_SUPPORT_METHOD(ImplicitBoundary, "implicit boundary")
+
+
+
+  ImplicitBoundary::ImplicitBoundary()
+    : SupportMethod("implicit boundary",
+                    BoundaryCurve::DirichletMethod::implicit_boundary)
+  {}
+
+
+
   void
   ImplicitBoundary::declare_parameters(ParameterHandler &prm)
   {
@@ -121,22 +132,9 @@ namespace bsmpm
 
 
   void
-  ImplicitBoundary::assemble(
-    const BoundaryCurves                             &curves,
-    const BackgroundGrid                             &grid,
-    const Q1CellKernel                               &kernel,
-    const Tensor<2, 3>                               &C,
-    const LinearAlgebra::distributed::Vector<double> *prescribed,
-    const ExactSolution                              *exact,
-    const double                                      increment_factor,
-    const AffineConstraints<double>                  &constraints,
-    TrilinosWrappers::SparseMatrix                   &matrix,
-    TrilinosWrappers::MPI::Vector                    &rhs,
-    const BoundaryCurve                              *only,
-    const std::vector<CellMoments>                   *moments,
-    const bool                                        finite_strain)
+  ImplicitBoundary::check_formulation(const BoundaryCurves &curves,
+                                      const bool            finite_strain) const
   {
-    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     // Every process holds every curve: the check is collective.
     if (formulation != Formulation::consistent)
       for (const auto &curve : curves.get_curves())
@@ -172,6 +170,33 @@ namespace bsmpm
           "boundary/Formulation = consistent' (the default, exact in "
           "finite strain) or the curves' 'Dirichlet method = "
           "nitsche'."));
+  }
+
+
+
+  void
+  ImplicitBoundary::assemble(
+    const Context                                    &context,
+    const double                                      increment_factor,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const std::vector<CellMoments>                   *moments,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   &matrix,
+    TrilinosWrappers::MPI::Vector                    &rhs,
+    const BoundaryCurve                              *only)
+  {
+    const BoundaryCurves  &curves        = context.curves;
+    const BackgroundGrid  &grid          = context.grid;
+    const Q1CellKernel    &kernel        = context.kernel;
+    const Tensor<2, 3>    &C             = context.material.stiffness();
+    const ExactSolution   *exact         = context.exact_solution;
+    const bool             finite_strain = context.finite_strain;
+    constexpr unsigned int n             = Q1CellKernel::dofs_per_cell;
+    check_formulation(curves, finite_strain);
+    // One function for the three formulations (about 200 lines): they share
+    // the pieces, the band's geometry at each Gauss point and its band
+    // points, and differ only in the band strain at a band point, which
+    // reads best next to the other.
     points.clear();
     last_increment_factor = increment_factor;
     last_exact            = exact;
@@ -179,24 +204,18 @@ namespace bsmpm
     const double    delta = band_width(grid);
     const QGauss<1> along(points_along), across(points_across);
 
-    FullMatrix<double>          cell_matrix(n, n);
-    Vector<double>              cell_rhs(n);
-    std::array<Voigt, n>        B1, B2, CB1, CB2;
-    std::array<Tensor<1, 2>, n> trace, trace_dt;
-    Q1CellKernel::LocalVector   da;
-    CurvePieceValues            values(grid, along);
+    FullMatrix<double>        cell_matrix(n, n);
+    Vector<double>            cell_rhs(n);
+    std::array<Voigt, n>      B1, B2, CB1, CB2;
+    Q1CellKernel::LocalVector da;
+    CurvePieceValues          values(grid, along);
+    BoundaryFrame             frame;
 
-    for (const auto &located :
-         values.pieces(curves,
-                       CurvePieceValues::supports_by(
-                         BoundaryCurve::DirichletMethod::implicit_boundary,
-                         only)))
+    for (const auto &piece : supported_pieces(values, curves, only))
       {
-        values.reinit(located);
-        const BoundaryCurve  &curve       = *located.curve;
-        const CurvePiece     &piece       = *located.piece;
-        const CurveCondition *condition   = located.condition;
-        const auto           &cell        = located.cell;
+        values.reinit(piece);
+        const CurveCondition *condition   = piece.condition;
+        const auto           &cell        = piece.owned_cell;
         const auto           &dof_indices = values.dof_indices();
         if (prescribed)
           for (unsigned int i = 0; i < n; ++i)
@@ -207,8 +226,6 @@ namespace bsmpm
         const bool roller  = condition->holds_normal_component_only();
         const bool imposes = formulation == Formulation::consistent &&
                              condition->prescribes_displacement();
-        const BSplineCurve &spline = *curve.spline;
-        const double        du     = piece.u_end - piece.u_begin;
         // B-bar: the regular strain's stress takes the volumetric strain
         // at the centroid of the cell's material, as the points'
         // stiffness does (Q1CellKernel::stress_column()).
@@ -221,50 +238,30 @@ namespace bsmpm
 
         for (unsigned int q = 0; q < along.size(); ++q)
           {
-            const double        u       = values.parameter(q);
-            const Point<2>     &c       = values.position(q);
-            const Tensor<1, 2> &outward = values.normal(q);
-            const Tensor<1, 2>  normal  = -outward; // inward
-            const Tensor<1, 2>  tangent({-normal[1], normal[0]});
-            const double        ds   = values.JxW(q);
-            const Tensor<2, 2>  nn   = outer_product(normal, normal);
-            const Point<2>     &st_c = values.local_coordinates(q);
-            // The grid field on the boundary: its value and derivative
-            // along the boundary, per shape function.
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                trace[i]    = kernel.shape_value(i, st_c);
-                trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent;
-              }
+            const Point<2> &c  = values.position(q);
+            const double    ds = values.JxW(q);
+            boundary_frame(values,
+                           q,
+                           kernel,
+                           imposes ? condition : nullptr,
+                           increment_factor,
+                           exact,
+                           frame);
+            const Tensor<1, 2> &normal = frame.normal, &tangent = frame.tangent;
+            const Tensor<2, 2> &nn    = frame.nn;
+            const auto         &trace = frame.trace, &trace_dt = frame.trace_dt;
+            const Tensor<1, 2> &g = frame.g, &dg_dt = frame.dg_dt;
+            if (imposes && problem.empty() &&
+                !(std::isfinite(g[0]) && std::isfinite(g[1])))
+              problem = condition->where +
+                        ": the prescribed displacement is not finite at (" +
+                        std::to_string(c[0]) + ", " + std::to_string(c[1]) +
+                        "): check the expression.";
             // The boundary's stress from the previous steps: the band's
             // share of the internal force, int B2^T sigma, which carries
             // the support's reaction from step to step.
-            const Voigt sigma_previous = curve.stress_at(piece.segment, u);
-            // The prescribed increment g on the boundary and its
-            // derivative along it (central differences along the curve).
-            // A normal displacement is g = g_n n with n the normal at c
-            // (the roller's terms treat n as constant across the band and
-            // along the piece).
-            Tensor<1, 2> g, dg_dt;
-            if (imposes)
-              {
-                const double   tau = 1e-6 * du;
-                const Point<2> a   = spline.value(u - tau),
-                               b   = spline.value(u + tau);
-                g                  = increment_factor *
-                    prescribed_value(*condition, exact, c, outward);
-                if (problem.empty() &&
-                    !(std::isfinite(g[0]) && std::isfinite(g[1])))
-                  problem = condition->where +
-                            ": the prescribed displacement is not finite "
-                            "at (" +
-                            std::to_string(c[0]) + ", " + std::to_string(c[1]) +
-                            "): check the expression.";
-                dg_dt = increment_factor *
-                        (prescribed_value(*condition, exact, b, outward) -
-                         prescribed_value(*condition, exact, a, outward)) /
-                        ((b - a) * tangent);
-              }
+            const Voigt sigma_previous =
+              piece.curve->stress_at(piece.segment, values.parameter(q));
 
             for (unsigned int r = 0; r < across.size(); ++r)
               {
@@ -399,9 +396,7 @@ namespace bsmpm
 
   void
   ImplicitBoundary::add_finite_strain_terms(
-    const BoundaryCurves                             &curves,
-    const BackgroundGrid                             &grid,
-    const Q1CellKernel                               &kernel,
+    const Context                                    &context,
     const LinearAlgebra::distributed::Vector<double> &increment,
     const SupportStress                              &stress,
     const AffineConstraints<double>                  &constraints,
@@ -411,70 +406,54 @@ namespace bsmpm
   {
     if (formulation != Formulation::consistent)
       return;
-    constexpr unsigned int n     = Q1CellKernel::dofs_per_cell;
-    const double           delta = band_width(grid);
+    const BoundaryCurves  &curves = context.curves;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
+    const double           delta  = band_width(grid);
     const QGauss<1>        along(points_along), across(points_across);
 
-    FullMatrix<double>          cell_matrix(n, n);
-    Vector<double>              cell_force(n);
-    Q1CellKernel::LocalVector   d;
-    std::array<Tensor<1, 2>, n> trace, trace_dt;
+    FullMatrix<double>        cell_matrix(n, n);
+    Vector<double>            cell_force(n);
+    Q1CellKernel::LocalVector d;
     // Per shape function: its gradient G, its band correction Delta, the
     // band's gradient G + Delta, and A : (G + Delta), A : G.
     std::array<Tensor<2, 2>, n> G, Delta, T, AT, AG;
     CurvePieceValues            values(grid, along);
+    BoundaryFrame               frame;
 
-    for (const auto &located :
-         values.pieces(curves,
-                       CurvePieceValues::supports_by(
-                         BoundaryCurve::DirichletMethod::implicit_boundary,
-                         only)))
+    for (const auto &piece : supported_pieces(values, curves, only))
       {
-        values.reinit(located);
-        const BoundaryCurve  &curve       = *located.curve;
-        const CurvePiece     &piece       = *located.piece;
-        const CurveCondition *condition   = located.condition;
+        values.reinit(piece);
+        const CurveCondition *condition   = piece.condition;
         const auto           &dof_indices = values.dof_indices();
         for (unsigned int i = 0; i < n; ++i)
           d[i] = increment(dof_indices[i]);
-        const bool          roller  = condition->holds_normal_component_only();
-        const bool          imposes = condition->prescribes_displacement();
-        const BSplineCurve &spline  = *curve.spline;
-        const double        du      = piece.u_end - piece.u_begin;
-        cell_matrix                 = 0;
-        cell_force                  = 0;
+        const bool roller  = condition->holds_normal_component_only();
+        const bool imposes = condition->prescribes_displacement();
+        cell_matrix        = 0;
+        cell_force         = 0;
 
         for (unsigned int q = 0; q < along.size(); ++q)
           {
             // The geometry and prescribed data of assemble().
-            const double        u       = values.parameter(q);
-            const Point<2>     &c       = values.position(q);
-            const Tensor<1, 2> &outward = values.normal(q);
-            const Tensor<1, 2>  normal  = -outward;
-            const Tensor<1, 2>  tangent_({-normal[1], normal[0]});
-            const double        ds   = values.JxW(q);
-            const Tensor<2, 2>  nn   = outer_product(normal, normal);
-            const Point<2>     &st_c = values.local_coordinates(q);
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                trace[i]    = kernel.shape_value(i, st_c);
-                trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent_;
-              }
-            Tensor<1, 2> g, dg_dt;
-            if (imposes)
-              {
-                const double   tau = 1e-6 * du;
-                const Point<2> a   = spline.value(u - tau),
-                               b   = spline.value(u + tau);
-                g                  = last_increment_factor *
-                    prescribed_value(*condition, last_exact, c, outward);
-                dg_dt = last_increment_factor *
-                        (prescribed_value(*condition, last_exact, b, outward) -
-                         prescribed_value(*condition, last_exact, a, outward)) /
-                        ((b - a) * tangent_);
-              }
+            const Point<2> &c  = values.position(q);
+            const double    ds = values.JxW(q);
+            boundary_frame(values,
+                           q,
+                           kernel,
+                           imposes ? condition : nullptr,
+                           last_increment_factor,
+                           last_exact,
+                           frame);
+            const Tensor<1, 2> &normal   = frame.normal,
+                               &tangent_ = frame.tangent;
+            const Tensor<2, 2> &nn       = frame.nn;
+            const auto         &trace = frame.trace, &trace_dt = frame.trace_dt;
+            const Tensor<1, 2> &g = frame.g, &dg_dt = frame.dg_dt;
             // The state of the boundary as of the step's start.
-            const std::vector<double> props = curve.state_at(piece.segment, u);
+            const std::vector<double> props =
+              piece.curve->state_at(piece.segment, values.parameter(q));
             const ArrayView<const double> state(props.data(), props.size());
 
             for (unsigned int r = 0; r < across.size(); ++r)
@@ -567,6 +546,45 @@ namespace bsmpm
 
 
 
+  void
+  ImplicitBoundary::boundary_frame(const CurvePieceValues &values,
+                                   const unsigned int      q,
+                                   const Q1CellKernel     &kernel,
+                                   const CurveCondition   *imposed,
+                                   const double            factor,
+                                   const ExactSolution    *exact,
+                                   BoundaryFrame          &frame)
+  {
+    const double        u       = values.parameter(q);
+    const Point<2>     &c       = values.position(q);
+    const Tensor<1, 2> &outward = values.normal(q);
+    frame.normal                = -outward; // inward
+    frame.tangent        = Tensor<1, 2>({-frame.normal[1], frame.normal[0]});
+    frame.nn             = outer_product(frame.normal, frame.normal);
+    const Point<2> &st_c = values.local_coordinates(q);
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      {
+        frame.trace[i]    = kernel.shape_value(i, st_c);
+        frame.trace_dt[i] = kernel.shape_gradient(i, st_c) * frame.tangent;
+      }
+    frame.g     = Tensor<1, 2>();
+    frame.dg_dt = Tensor<1, 2>();
+    if (imposed == nullptr)
+      return;
+    // dg/dt by central differences along the curve.
+    const LocallyOwnedCurvePiece &piece  = values.get_piece();
+    const BSplineCurve           &spline = *piece.curve->spline;
+    const double                  tau    = 1e-6 * (piece.u_end - piece.u_begin);
+    const Point<2> a = spline.value(u - tau), b = spline.value(u + tau);
+    frame.g     = factor * prescribed_value(*imposed, exact, c, outward);
+    frame.dg_dt = factor *
+                  (prescribed_value(*imposed, exact, b, outward) -
+                   prescribed_value(*imposed, exact, a, outward)) /
+                  ((b - a) * frame.tangent);
+  }
+
+
+
   bool
   ImplicitBoundary::prescribes_displacement(const BoundaryCurves &curves)
   {
@@ -605,16 +623,17 @@ namespace bsmpm
 
   double
   ImplicitBoundary::fit_prescribed_displacement(
-    const BoundaryCurves                       &curves,
-    const BackgroundGrid                       &grid,
-    const Q1CellKernel                         &kernel,
-    const ExactSolution                        *exact,
+    const Context                              &context,
     const double                                factor,
     TrilinosWrappers::SparseMatrix             &mass,
     LinearAlgebra::distributed::Vector<double> &prescribed) const
   {
-    constexpr unsigned int n    = Q1CellKernel::dofs_per_cell;
-    const MPI_Comm         comm = grid.mpi_communicator();
+    const BoundaryCurves  &curves = context.curves;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    const ExactSolution   *exact  = context.exact_solution;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
+    const MPI_Comm         comm   = grid.mpi_communicator();
     const QGauss<1>        gauss(std::max(points_along, 4u));
 
     // Which DoFs the boundary meets: all others are zero.
@@ -629,7 +648,7 @@ namespace bsmpm
     std::vector<types::global_dof_index> dof_indices(n);
     for (const auto &piece : pieces)
       {
-        piece.cell->get_dof_indices(dof_indices);
+        piece.owned_cell->get_dof_indices(dof_indices);
         for (const auto i : dof_indices)
           touched(i) = 1;
       }

@@ -55,11 +55,10 @@ namespace bsmpm
            }))
       {
         values.reinit(piece);
-        const BoundaryCurve  &curve     = *piece.curve;
         const CurveCondition *condition = piece.condition;
         AssertThrow(condition->kind != CurveCondition::Kind::exact_traction ||
                       exact != nullptr,
-                    ExcMessage("Boundary curves/" + curve.name +
+                    ExcMessage("Boundary curves/" + piece.curve->name +
                                ": 'exact traction' needs an exact solution "
                                "in the 'Exact solution' section."));
         cell_rhs    = 0;

@@ -22,6 +22,16 @@ namespace bsmpm
 
 
 
+  BSMPM_REGISTER_SUPPORT_METHOD(NitscheBoundary, "nitsche")
+
+
+
+  NitscheBoundary::NitscheBoundary()
+    : SupportMethod("nitsche", BoundaryCurve::DirichletMethod::nitsche)
+  {}
+
+
+
   void
   NitscheBoundary::declare_parameters(ParameterHandler &prm)
   {
@@ -55,19 +65,21 @@ namespace bsmpm
 
 
   void
-  NitscheBoundary::assemble(const BoundaryCurves            &curves,
-                            const BackgroundGrid            &grid,
-                            const Q1CellKernel              &kernel,
-                            const LinearElasticMaterial     &material,
-                            const ExactSolution             *exact,
-                            const double                     increment_factor,
-                            const AffineConstraints<double> &constraints,
-                            TrilinosWrappers::SparseMatrix  &matrix,
-                            TrilinosWrappers::MPI::Vector   &rhs,
-                            const BoundaryCurve             *only,
-                            const std::vector<CellMoments>  *moments,
-                            const bool finite_strain) const
+  NitscheBoundary::assemble(
+    const Context &context,
+    const double   increment_factor,
+    const LinearAlgebra::distributed::Vector<double> * /*prescribed*/,
+    const std::vector<CellMoments>  *moments,
+    const AffineConstraints<double> &constraints,
+    TrilinosWrappers::SparseMatrix  &matrix,
+    TrilinosWrappers::MPI::Vector   &rhs,
+    const BoundaryCurve             *only)
   {
+    const BoundaryCurves  &curves        = context.curves;
+    const BackgroundGrid  &grid          = context.grid;
+    const Q1CellKernel    &kernel        = context.kernel;
+    const ExactSolution   *exact         = context.exact_solution;
+    const bool             finite_strain = context.finite_strain;
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
@@ -77,23 +89,18 @@ namespace bsmpm
     // penalty must outgrow it to keep the form coercive: scale it by
     // max(E, kappa) (doc/b-bar.md).
     const double beta =
-      penalty * material.penalty_modulus() / grid.min_cell_size();
+      penalty * context.material.penalty_modulus() / grid.min_cell_size();
 
     FullMatrix<double>          cell_matrix(n, n);
     Vector<double>              cell_rhs(n);
     std::array<Tensor<1, 2>, n> value, stress_n;
     CurvePieceValues            values(grid, gauss);
 
-    for (const auto &located :
-         values.pieces(curves,
-                       CurvePieceValues::supports_by(
-                         BoundaryCurve::DirichletMethod::nitsche, only)))
+    for (const auto &piece : supported_pieces(values, curves, only))
       {
-        values.reinit(located);
-        const BoundaryCurve  &curve     = *located.curve;
-        const CurvePiece     &piece     = *located.piece;
-        const CurveCondition *condition = located.condition;
-        const auto           &cell      = located.cell;
+        values.reinit(piece);
+        const CurveCondition *condition = piece.condition;
+        const auto           &cell      = piece.owned_cell;
 
         // A roller and a prescribed normal displacement hold the normal
         // component only.
@@ -141,7 +148,7 @@ namespace bsmpm
             // Reaction of the previous steps.
             const Tensor<1, 2> reaction =
               consistency *
-              project(traction(curve.stress_at(piece.segment, u), nv));
+              project(traction(piece.curve->stress_at(piece.segment, u), nv));
 
             // The prescribed increment; for a normal displacement
             // g = g_n n, so that the projected terms give
@@ -172,9 +179,7 @@ namespace bsmpm
 
   void
   NitscheBoundary::add_finite_strain_terms(
-    const BoundaryCurves                             &curves,
-    const BackgroundGrid                             &grid,
-    const Q1CellKernel                               &kernel,
+    const Context                                    &context,
     const LinearAlgebra::distributed::Vector<double> &increment,
     const SupportStress                              &stress,
     const AffineConstraints<double>                  &constraints,
@@ -182,7 +187,10 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector                    &internal_force,
     const BoundaryCurve                              *only) const
   {
-    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    const BoundaryCurves  &curves = context.curves;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
 
     FullMatrix<double>          cell_matrix(n, n);
@@ -192,18 +200,13 @@ namespace bsmpm
     std::array<Tensor<2, 2>, n> G;
     CurvePieceValues            values(grid, gauss);
 
-    for (const auto &located :
-         values.pieces(curves,
-                       CurvePieceValues::supports_by(
-                         BoundaryCurve::DirichletMethod::nitsche, only)))
+    for (const auto &piece : supported_pieces(values, curves, only))
       {
-        values.reinit(located);
-        const BoundaryCurve &curve       = *located.curve;
-        const CurvePiece    &piece       = *located.piece;
-        const auto          &dof_indices = values.dof_indices();
+        values.reinit(piece);
+        const auto &dof_indices = values.dof_indices();
         for (unsigned int i = 0; i < n; ++i)
           d[i] = increment(dof_indices[i]);
-        const bool roller = located.condition->holds_normal_component_only();
+        const bool roller = piece.condition->holds_normal_component_only();
         cell_matrix       = 0;
         cell_force        = 0;
 
@@ -223,9 +226,10 @@ namespace bsmpm
                 G[i]     = kernel.shape_gradient(i, st);
                 f += d[i] * G[i];
               }
-            const std::vector<double> props = curve.state_at(piece.segment, u);
-            Tensor<2, 2>              P;
-            Tensor<4, 2>              A;
+            const std::vector<double> props =
+              piece.curve->state_at(piece.segment, u);
+            Tensor<2, 2> P;
+            Tensor<4, 2> A;
             if (!stress(
                   ArrayView<const double>(props.data(), props.size()), f, P, A))
               continue; // inverted: reported by @p stress to the solver

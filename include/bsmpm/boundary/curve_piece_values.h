@@ -14,20 +14,21 @@ namespace bsmpm
   using namespace dealii;
 
   /**
-   * One piece of a boundary curve in a locally owned grid cell (a
-   * CurvePiece), with the curve it belongs to and the condition that acts
-   * on it: what CurvePieceValues::reinit() takes.
+   * One piece of a boundary curve in a locally owned grid cell (its cell
+   * index, parameter range and segment, as CurvePiece), with the curve it
+   * belongs to, the condition that acts on it and the cell itself: what
+   * CurvePieceValues::reinit() takes.
    */
-  struct LocallyOwnedCurvePiece
+  struct LocallyOwnedCurvePiece : CurvePiece
   {
-    const BoundaryCurve *curve;
+    const BoundaryCurve *curve = nullptr;
     /** The curve's index in BoundaryCurves::get_curves(). */
-    unsigned int      curve_index;
-    const CurvePiece *piece;
+    unsigned int curve_index = 0;
     /** The condition of the piece's segment, or nullptr where it is free. */
-    const CurveCondition *condition;
-    /** The locally owned cell that holds the piece. */
-    BackgroundGrid::cell_iterator cell;
+    const CurveCondition *condition = nullptr;
+    /** The locally owned cell that holds the piece (CurvePiece::cell is
+     * its index). */
+    BackgroundGrid::cell_iterator owned_cell;
   };
 
 
@@ -43,7 +44,7 @@ namespace bsmpm
    *   CurvePieceValues values(grid, QGauss<1>(4));
    *   for (const auto &piece : values.pieces(curves, filter))
    *     {
-   *       values.reinit(piece);
+   *       values.reinit(piece);   // piece.curve, piece.condition, ...
    *       for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
    *         ... values.position(q), values.JxW(q), values.normal(q),
    *             values.local_coordinates(q) ...
@@ -58,6 +59,11 @@ namespace bsmpm
    * the quadrature @p quadrature on [0, 1] are u_q = u_a + x_q (u_b - u_a),
    * and the length element is |C'(u_q)| (u_b - u_a) w_q, evaluated in this
    * order (the reference outputs depend on the last bit).
+   *
+   * Contact (CurveContact) can walk the free pieces the same way:
+   * pieces(curves, a filter of condition == nullptr), with
+   * LocallyOwnedCurvePiece::curve_index for its per-curve data, and
+   * reinit() only for the pieces near a rigid body.
    */
   class CurvePieceValues
   {
