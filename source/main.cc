@@ -13,11 +13,9 @@
 #include <bsmpm/io/mpi_start.h>
 #include <bsmpm/io/parameter_listing.h>
 #include <bsmpm/io/parameter_sweep.h>
-
-#include <boost/archive/archive_exception.hpp>
+#include <bsmpm/io/run_checkpoint.h>
 
 #include <iostream>
-#include <stdexcept>
 #include <string>
 
 namespace
@@ -46,22 +44,7 @@ namespace
     bsmpm::Scene scene(MPI_COMM_WORLD);
     scene.parse_parameters(prm);
     scene.resume_from(from);
-    try
-      {
-        scene.run();
-      }
-    catch (const boost::archive::archive_exception &e)
-      {
-        // Reading the checkpoint's archives failed; boost's message
-        // ("input stream error") names nothing.
-        if (e.code == boost::archive::archive_exception::output_stream_error)
-          throw;
-        throw std::runtime_error(
-          "Checkpoint '" + from +
-          "': its files 'state' and 'points' cannot be read: "
-          "truncated or damaged (" +
-          e.what() + "). Resume from an earlier checkpoint-<step> directory.");
-      }
+    bsmpm::RunCheckpoint::explain_read_errors(from, [&]() { scene.run(); });
   }
 } // namespace
 

@@ -6,42 +6,10 @@
 #include <bsmpm/points/move_diagnosis.h>
 #include <bsmpm/verification/error_measures.h>
 
-#include <boost/archive/binary_iarchive.hpp>
-#include <boost/archive/binary_oarchive.hpp>
-
 #include <algorithm>
-#include <cmath>
-#include <iomanip>
-#include <sstream>
 
 namespace bsmpm
 {
-  namespace
-  {
-    /** The figures of the Newton iterations of one increment, and of their
-     * linear solves, into the step's record. */
-    void
-    record_newton(const IncrementSolver::LinearSolves &solves,
-                  const NewtonSolver::Result          &result,
-                  RunSummary::Step                    &record)
-    {
-      if (solves.n_solves > 0)
-        {
-          record.solver            = solves.method;
-          record.relative_residual = solves.relative_residual;
-        }
-      record.iterations = solves.iterations;
-      record.refinement_steps += solves.refinement_steps;
-      for (const auto &iteration : result.iterations)
-        {
-          record.newton_residuals.push_back(iteration.relative_residual);
-          record.newton_corrections.push_back(iteration.relative_correction);
-        }
-    }
-  } // namespace
-
-
-
   Scene::Scene(const MPI_Comm communicator)
     : communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -56,7 +24,7 @@ namespace bsmpm
                   points,
                   boundary_curves,
                   neumann_loads,
-                  implicit_boundary)
+                  supports)
     , checkpoint(communicator)
   {}
 
@@ -99,8 +67,7 @@ namespace bsmpm
     MaterialPointLayout::declare_parameters(prm);
     BoundaryCurves::declare_parameters(prm);
     NeumannLoads::declare_parameters(prm);
-    ImplicitBoundary::declare_parameters(prm);
-    NitscheBoundary::declare_parameters(prm);
+    SupportMethods::declare_parameters(prm);
     CurveContact::declare_parameters(prm);
     GhostPenalty::declare_parameters(prm);
     CutCellQuadrature::declare_parameters(prm);
@@ -155,8 +122,7 @@ namespace bsmpm
       BoundaryCurves::enclose_body_region(prm, region, grid.min_cell_size());
     boundary_curves.parse_parameters(prm);
     neumann_loads.parse_parameters(prm);
-    implicit_boundary.parse_parameters(prm);
-    nitsche_boundary.parse_parameters(prm);
+    supports.parse_parameters(prm);
     ghost_penalty.parse_parameters(prm);
     cut_cell_quadrature.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
@@ -215,48 +181,7 @@ namespace bsmpm
     InputChecks::check_supports(grid, boundary_curves, contact.enabled());
     {
       TimerOutput::Scope t(timer, "setup: system");
-      assembly = std::make_unique<SystemAssembly>(
-        SystemAssembly::Parts{grid,
-                              material,
-                              boundary_curves,
-                              neumann_loads,
-                              implicit_boundary,
-                              nitsche_boundary,
-                              ghost_penalty,
-                              exact_solution.get(),
-                              gravity,
-                              linear_b_bar},
-        timer);
-      assembly->setup();
-      assembly->keep_support_terms(reactions.curves());
-      if (contact.enabled())
-        {
-          assembly->use_contact(&contact);
-          step_output.show_contact(contact);
-        }
-      if (constitutive_update)
-        {
-          constitutive_update->use_cut_cell_quadrature(
-            cut_cell_quadrature.active() ? &cell_moments : nullptr);
-          assembly->leave_material_to_points(
-            &points, constitutive_update->completes_moments());
-          assembly->use_finite_strain(
-            constitutive_update->kinematics() ==
-            ConstitutiveUpdate::Kinematics::finite_strain);
-        }
-      increment_solver = std::make_unique<IncrementSolver>(
-        IncrementSolver::Parts{grid,
-                               *assembly,
-                               linear_solver,
-                               newton,
-                               points,
-                               boundary_curves,
-                               constitutive_update.get(),
-                               contact.enabled() ? &contact : nullptr},
-        timer);
-      increment.reinit(grid.locally_owned_dofs(),
-                       grid.locally_relevant_dofs(),
-                       communicator);
+      make_solvers();
     }
 
     run_summary.scene   = scene_name;
@@ -267,60 +192,101 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
-    if (displacement_control.enabled())
-      {
-        // What the bordered Newton iterations do not handle is refused here.
-        AssertThrow(constitutive_update && !this->finite_strain() &&
-                      !boundary_curves.prescribe_displacement() &&
-                      !contact.enabled() && !checkpoint.resuming(),
-                    ExcMessage(
-                      "Loading/Control = displacement needs a nonlinear "
-                      "material in small strain, no prescribed "
-                      "displacement on the boundary curves, no rigid "
-                      "bodies, and no resumed "
-                      "checkpoint (the load factor is not in it)."));
-        displacement_control.locate(grid);
-        pcout << "displacement control at the vertex "
-              << displacement_control.vertex() << ", "
-              << displacement_control.displacement_increment()
-              << " m per step\n";
-      }
-    else
-      // A limit load needs a material that yields (or large deformation):
-      // contact alone makes the run nonlinear, but an elastic body in
-      // contact has none. Under a rigid body that the load factor moves,
-      // the run follows the mechanism (as under a prescribed displacement);
-      // under one held or force-controlled, the load factor scales loads.
-      collapse_detector.initialize(constitutive_update != nullptr &&
-                                     (!constitutive_model->is_linear() ||
-                                      finite_strain()),
-                                   boundary_curves.prescribe_displacement() ||
-                                     contact.moves_bodies_with_load());
+    load_stepper->initialize(!constitutive_model->is_linear() ||
+                               finite_strain(),
+                             checkpoint.resuming());
   }
 
 
 
   void
-  Scene::fit_prescribed_displacement(const double increment_factor)
+  Scene::make_solvers()
   {
-    TimerOutput::Scope t(timer, "prescribed displacement fit");
-    const double       misfit =
-      implicit_boundary.fit_prescribed_displacement(boundary_curves,
-                                                    grid,
-                                                    assembly->kernel(),
-                                                    exact_solution.get(),
-                                                    increment_factor,
-                                                    assembly->fit_matrix(),
-                                                    prescribed);
-    // The fit is linear in u^a: report the misfit of u^a itself.
-    run_summary.quantities["boundary_fit_error"] = misfit / increment_factor;
+    CurveContact *const curve_contact = contact.enabled() ? &contact : nullptr;
+    const bool          nonlinear     = constitutive_update != nullptr;
+    if (nonlinear)
+      constitutive_update->use_cut_cell_quadrature(
+        cut_cell_quadrature.active() ? &cell_moments : nullptr);
+    assembly = std::make_unique<SystemAssembly>(
+      SystemAssembly::Parts{grid,
+                            material,
+                            boundary_curves,
+                            neumann_loads,
+                            supports,
+                            ghost_penalty,
+                            exact_solution.get(),
+                            gravity,
+                            linear_b_bar,
+                            nonlinear ? &points : nullptr,
+                            nonlinear &&
+                              constitutive_update->completes_moments(),
+                            finite_strain(),
+                            curve_contact,
+                            reactions.curves()},
+      timer);
+    assembly->setup();
+    if (curve_contact != nullptr)
+      step_output.show_contact(contact);
+    increment_solver = std::make_unique<IncrementSolver>(
+      IncrementSolver::Parts{grid,
+                             *assembly,
+                             linear_solver,
+                             newton,
+                             points,
+                             boundary_curves,
+                             constitutive_update.get(),
+                             curve_contact},
+      timer);
+    increment.reinit(grid.locally_owned_dofs(),
+                     grid.locally_relevant_dofs(),
+                     communicator);
+    load_stepper = std::make_unique<LoadStepper>(
+      LoadStepper::Parts{grid,
+                         points,
+                         boundary_curves,
+                         neumann_loads,
+                         material,
+                         gravity,
+                         *assembly,
+                         *increment_solver,
+                         linear_solver,
+                         newton,
+                         collapse_detector,
+                         displacement_control,
+                         constitutive_update.get(),
+                         curve_contact,
+                         increment},
+      LoadStepper::Phases{[this]() -> const std::vector<CellMoments> & {
+                            return compute_cell_moments();
+                          },
+                          [this](const unsigned int step, const double delta) {
+                            move_points(step, delta);
+                            update_curves(step);
+                          }},
+      timer,
+      pcout,
+      run_summary.quantities);
+    run_checkpoint =
+      std::make_unique<RunCheckpoint>(checkpoint,
+                                      RunCheckpoint::Parts{grid,
+                                                           points,
+                                                           *assembly,
+                                                           *increment_solver,
+                                                           collapse_detector,
+                                                           curve_contact});
   }
 
 
 
-  void
+  const std::vector<CellMoments> &
   Scene::compute_cell_moments()
   {
+    if (points_moved)
+      {
+        TimerOutput::Scope t(timer, "sort points");
+        points.sort_into_cells();
+        points_moved = false;
+      }
     TimerOutput::Scope t(timer, "assembly");
     points.compute_cell_moments(cell_moments);
     if (cut_cell_quadrature.active())
@@ -333,6 +299,7 @@ namespace bsmpm
     // state, across the partition's edges too.
     if (constitutive_update && constitutive_update->completes_moments())
       points.exchange_neighbourhood_state();
+    return cell_moments;
   }
 
 
@@ -341,17 +308,8 @@ namespace bsmpm
   Scene::move_points(const unsigned int step, const double delta)
   {
     TimerOutput::Scope t(timer, "update points");
-    const bool         ibm = boundary_curves.has_supports(
-      BoundaryCurve::DirichletMethod::implicit_boundary);
-    if (ibm)
-      {
-        band_cells.assign(grid.triangulation().n_active_cells(), false);
-        boundary_curves.mark_support_cells(
-          grid,
-          BoundaryCurve::DirichletMethod::implicit_boundary,
-          false,
-          band_cells);
-      }
+    const bool         displaced =
+      supports.mark_point_displacement_cells(grid, boundary_curves, band_cells);
     if (!boundary_curves.empty())
       points.set_rigid_increments(boundary_curves.rigid_support_increments(
         points.n_tracked(), exact_solution.get(), delta));
@@ -359,20 +317,21 @@ namespace bsmpm
       assembly->kernel(),
       material,
       increment,
-      has_prescribed ? &prescribed : nullptr,
-      ibm ? &band_cells : nullptr,
+      assembly->prescribed_displacement(),
+      displaced ? &band_cells : nullptr,
       [this](const Point<2>                                      &x,
              const std::function<Tensor<1, 2>(const Point<2> &)> &field,
              Tensor<1, 2>                                        &w) {
-        return implicit_boundary.support_displacement(
+        return supports.support_displacement(
           boundary_curves, grid, x, field, w);
       },
-      &cell_quality,
+      &load_stepper->cell_qualities(),
       /*update_stress=*/constitutive_update == nullptr,
       /*update_strain=*/!constitutive_update ||
         constitutive_update->kinematics() ==
           ConstitutiveUpdate::Kinematics::small_strain,
       &cell_moments);
+    points_moved                               = true;
     run_summary.quantities["max_displacement"] = report.max_displacement;
     run_summary.quantities["max_stress"]       = report.max_stress;
     if (report.n_left_grid > 0)
@@ -474,46 +433,8 @@ namespace bsmpm
     if (exact_solution && pcout.is_active())
       pcout << "exact solution     " << exact_solution->description() << '\n';
 
-    unsigned int first_step = 1;
-    if (checkpoint.resuming())
-      {
-        std::vector<CellId> weak_cells;
-        first_step = checkpoint.read_state(run_summary, output, weak_cells) + 1;
-        // The curves and the tracked list are rebuilt as at the start,
-        // which no longer matches points that were inserted or removed
-        // (their records begin with the first change).
-        for (const auto &record : run_summary.steps)
-          AssertThrow(record.quantities.count("curve1_points") == 0,
-                      ExcMessage(
-                        "This checkpoint cannot be resumed: the boundary "
-                        "curves gained or lost tracking points before it "
-                        "(from load step " +
-                        std::to_string(record.number) +
-                        "), and a resumed run rebuilds the curves as they "
-                        "were at the start. Resume from an earlier "
-                        "checkpoint, or run with 'Boundary curves/Point "
-                        "spacing/Adapt = false'."));
-        assembly->restore_matrix(weak_cells);
-        // Checkpoints of earlier versions have no such state: resumed,
-        // their next step starts from zero; with rigid bodies they are
-        // refused (the friction history is not in them).
-        const std::string state = checkpoint.read_scene_state();
-        AssertThrow(!state.empty() || !contact.enabled(),
-                    ExcMessage("This checkpoint has no contact state "
-                               "(written by a version of bsmpm that did "
-                               "not keep it): a run with rigid bodies "
-                               "cannot resume from it."));
-        if (!state.empty())
-          {
-            std::istringstream              in(state);
-            boost::archive::binary_iarchive archive(in);
-            IncrementSolver::Memory         memory;
-            archive >> memory >> collapse_detector;
-            increment_solver->restore(memory);
-            if (contact.enabled())
-              archive >> contact;
-          }
-      }
+    const unsigned int first_step =
+      checkpoint.resuming() ? run_checkpoint->resume(run_summary, output) : 1;
     if (pcout.is_active())
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);
@@ -531,12 +452,12 @@ namespace bsmpm
             RunSummary::Step record;
             record.number = step;
             if (displacement_control.enabled())
-              advance_under_displacement_control(step, record);
+              load_stepper->advance_under_displacement_control(step, record);
             else
-              advance(step,
-                      double(step - 1) / n_load_steps,
-                      load_factor,
-                      record);
+              load_stepper->advance(step,
+                                    double(step - 1) / n_load_steps,
+                                    load_factor,
+                                    record);
             const bool collapsed = collapse_detector.collapsed();
             // A step that collapsed before any increment converged leaves
             // the body as the step before: nothing to record.
@@ -566,7 +487,7 @@ namespace bsmpm
 
         if (exact_solution)
           evaluate_errors();
-        report_stalled_increments();
+        run_summary.report_stalled_increments(pcout);
         run_summary.finish(verification,
                            output,
                            timer,
@@ -590,32 +511,6 @@ namespace bsmpm
 
 
   void
-  Scene::report_stalled_increments()
-  {
-    // Said at the end as well as in the table: the answer of such a run
-    // holds to that residual, not to the Newton tolerance.
-    unsigned int n       = 0;
-    double       largest = 0;
-    for (const auto &s : run_summary.steps)
-      {
-        n += s.stalled_increments;
-        largest = std::max(largest, s.stalled_residual);
-      }
-    if (n == 0)
-      return;
-    run_summary.quantities["stalled_increments"]   = n;
-    run_summary.quantities["stalled_residual_max"] = largest;
-    pcout << "\nNote: " << n
-          << " load increment(s) did not converge in their last cut and took "
-             "their best iterate (Nonlinear solver/Stall tolerance), the "
-             "largest residual "
-          << std::setprecision(2) << largest << std::setprecision(6)
-          << " of the largest internal force: see the step table.\n";
-  }
-
-
-
-  void
   Scene::record_quantities(const RunSummary::Step &record)
   {
     if (probe.enabled())
@@ -632,12 +527,7 @@ namespace bsmpm
       }
     if (boundary_curves.has_loads())
       {
-        // Under displacement control the last assemble() had the load
-        // factor of the step's start.
-        const Tensor<1, 2> force =
-          displacement_control.enabled() ?
-            controlled_load_factor * unit_traction_resultant :
-            neumann_loads.resultant(communicator);
+        const Tensor<1, 2> force = load_stepper->traction_resultant();
         run_summary.quantities["traction_resultant_x"] = force[0];
         run_summary.quantities["traction_resultant_y"] = force[1];
       }
@@ -652,331 +542,11 @@ namespace bsmpm
 
 
   void
-  Scene::advance(const unsigned int step,
-                 const double       from,
-                 const double       to,
-                 RunSummary::Step  &record)
-  {
-    double       lambda = from;
-    double       delta  = to - from;
-    unsigned int cuts   = 0;
-    record.increments   = 0;
-    while (lambda < to - 1e-12 * (to - from))
-      {
-        delta = std::min(delta, to - lambda);
-        if (points_moved)
-          {
-            TimerOutput::Scope t(timer, "sort points");
-            points.sort_into_cells();
-            points_moved = false;
-          }
-        compute_cell_moments();
-        assembly->make_constraints(cell_moments);
-        has_prescribed =
-          implicit_boundary.fits_prescribed_displacement(boundary_curves);
-        if (has_prescribed)
-          fit_prescribed_displacement(delta);
-        cell_quality =
-          assembly->support_qualities(cell_moments, constitutive_update.get());
-        // A Newton failure that cutting the increment does not cure comes
-        // from a mechanism that the stabilisation leaves free: perfectly
-        // plastic points at their limit, driven by the imbalance that the
-        // new quadrature of the moved points leaves (doc/newton.md). Every
-        // cut of the increment therefore also lowers the qualities ten times
-        // (the ghost penalty's threshold raised ten times), at most a
-        // hundred times, for the rest of the step.
-        if (cuts > 0)
-          {
-            const double factor = std::pow(10., std::min(cuts, 2u));
-            for (auto &q : cell_quality)
-              if (q > 0)
-                q /= factor;
-          }
-        assembly->assemble(lambda + delta,
-                           delta,
-                           cell_moments,
-                           cell_quality,
-                           has_prescribed ? &prescribed : nullptr);
-        if (linear_solver.estimates_condition() &&
-            assembly->rhs().l2_norm() > 0)
-          {
-            TimerOutput::Scope t(timer, "condition estimate");
-            const double       estimate =
-              linear_solver.estimate_condition_number(assembly->matrix(),
-                                                      assembly->rhs());
-            double &largest = run_summary.quantities["condition_estimate"];
-            largest         = std::max(largest, estimate);
-          }
-        if (contact.enabled())
-          {
-            contact.begin_increment(boundary_curves,
-                                    grid,
-                                    material.penalty_modulus(),
-                                    lambda,
-                                    lambda + delta);
-            // A body under a force moved to touch before the iterations.
-            const std::string note = contact.motion().take_notes();
-            if (!note.empty())
-              pcout << "       load " << lambda << " + " << delta << ": "
-                    << note << '\n';
-          }
-        if (constitutive_update)
-          {
-            if (!solve_nonlinear(step, lambda, delta, cuts, record))
-              {
-                if (collapse_detector.collapsed())
-                  break;
-                ++cuts;
-                delta /= 2;
-                continue;
-              }
-          }
-        else
-          {
-            const auto report = increment_solver->solve_linear(step, increment);
-            record.solver     = report.method;
-            record.iterations = report.iterations;
-            record.refinement_steps  = report.refinement_steps;
-            record.relative_residual = report.relative_residual;
-          }
-        record.n_active_cells = assembly->n_active_cells();
-        // The increment's size per unit load, before the points take it.
-        const bool collapsed = collapse_detector.converged_increment(
-          step, lambda, delta, increment.linfty_norm());
-        if (contact.enabled())
-          contact.finish_increment(boundary_curves,
-                                   grid,
-                                   assembly->kernel(),
-                                   increment,
-                                   has_prescribed ? &prescribed : nullptr);
-        move_points(step, delta);
-        points_moved = true;
-        update_curves(step);
-        lambda += delta;
-        ++record.increments;
-        if (collapsed)
-          break;
-      }
-    // The step's own factor where it finished (the sum of cut increments
-    // may differ from it in the last bits).
-    record.load_factor = collapse_detector.collapsed() ? lambda : to;
-  }
-
-
-
-  void
-  Scene::advance_under_displacement_control(const unsigned int step,
-                                            RunSummary::Step  &record)
-  {
-    const double step_increment = displacement_control.displacement_increment();
-    double       done           = 0;
-    double       portion        = step_increment;
-    unsigned int cuts           = 0;
-    record.increments           = 0;
-    while (done < step_increment * (1 - 1e-12))
-      {
-        portion = std::min(portion, step_increment - done);
-        if (points_moved)
-          {
-            TimerOutput::Scope t(timer, "sort points");
-            points.sort_into_cells();
-            points_moved = false;
-          }
-        compute_cell_moments();
-        assembly->make_constraints(cell_moments);
-        has_prescribed = false;
-        cell_quality =
-          assembly->support_qualities(cell_moments, constitutive_update.get());
-        if (cuts > 0)
-          {
-            const double factor = std::pow(10., std::min(cuts, 2u));
-            for (auto &q : cell_quality)
-              if (q > 0)
-                q /= factor;
-          }
-        // The loads of load factor 1, then the system at the load factor
-        // reached: the load increment is the Newton iterations' unknown.
-        assembly->reference_loads(cell_moments, reference_loads);
-        if (boundary_curves.has_loads())
-          unit_traction_resultant = neumann_loads.resultant(communicator);
-        assembly->assemble(
-          controlled_load_factor, 0., cell_moments, cell_quality, nullptr);
-        assembly->check_loads_finite(step);
-        constitutive_update->set_body_force(controlled_load_factor *
-                                            material.density() * gravity);
-
-        IncrementSolver::LinearSolves solves;
-        double                        load_increment = 0;
-        const NewtonSolver::Result    result =
-          increment_solver->solve_controlled(displacement_control,
-                                             portion,
-                                             reference_loads,
-                                             increment,
-                                             load_increment,
-                                             solves);
-        record_newton(solves, result, record);
-        if (!result.converged)
-          {
-            newton.report_failure(result,
-                                  step,
-                                  controlled_load_factor,
-                                  load_increment,
-                                  cuts,
-                                  pcout.is_active() ? &pcout.get_stream() :
-                                                      nullptr);
-            ++cuts;
-            portion /= 2;
-            continue;
-          }
-        {
-          TimerOutput::Scope t(timer, "update points");
-          record.n_yielded = constitutive_update->commit(
-            points, grid, assembly->kernel(), increment, nullptr);
-        }
-        record.n_active_cells = assembly->n_active_cells();
-        move_points(step, load_increment);
-        points_moved = true;
-        update_curves(step);
-        controlled_load_factor += load_increment;
-        done += portion;
-        ++record.increments;
-      }
-    record.load_factor = controlled_load_factor;
-  }
-
-
-
-  bool
-  Scene::solve_nonlinear(const unsigned int step,
-                         const double       lambda,
-                         const double       delta,
-                         const unsigned int cuts,
-                         RunSummary::Step  &record)
-  {
-    assembly->check_loads_finite(step);
-    constitutive_update->set_body_force((lambda + delta) * material.density() *
-                                        gravity);
-    IncrementSolver::LinearSolves solves;
-    NewtonSolver::Result          result;
-    // The last cut that may still cycle (doc/newton.md, "Stalled
-    // increments"): its best iterate, if close enough, rather than a
-    // failed run. Under load control such a step is the limit load.
-    const bool may_stall =
-      !collapse_detector.active() && cuts >= newton.max_step_cuts();
-    try
-      {
-        result =
-          increment_solver->solve_newton(delta,
-                                         has_prescribed ? &prescribed : nullptr,
-                                         increment,
-                                         solves,
-                                         may_stall);
-      }
-    catch (const ExceptionBase &e)
-      {
-        // A tangent that the linear solver finds singular after the first
-        // step is a body whose plastic points leave a mechanism free (at
-        // or beyond the limit load): a failed increment, to be cut. Before
-        // anything converged it is a missing support: the error stands.
-        if (!collapse_detector.active() || step == 1)
-          throw;
-        result.converged = false;
-        result.failure   = "the linear solve failed: " + message_of(e);
-      }
-    record_newton(solves, result, record);
-    // The residual an accepted iterate leaves is part of the next
-    // increment's.
-    if (!result.converged && may_stall)
-      {
-        const double ratio =
-          increment_solver->take_best_iterate(newton.stall_tolerance(),
-                                              has_prescribed ? &prescribed :
-                                                               nullptr,
-                                              increment);
-        if (ratio >= 0)
-          {
-            newton.log_failure(result,
-                               lambda,
-                               delta,
-                               pcout.is_active() ? &pcout.get_stream() :
-                                                   nullptr);
-            pcout << "       load " << lambda << " + " << delta
-                  << ": accepted the best iterate, |R| = "
-                  << std::setprecision(2) << ratio << std::setprecision(6)
-                  << " of the largest internal force (Nonlinear "
-                     "solver/Stall tolerance)\n";
-            ++record.stalled_increments;
-            record.stalled_residual = std::max(record.stalled_residual, ratio);
-            result.converged        = true;
-          }
-      }
-    if (!result.converged)
-      {
-        // Under load control a step that cannot be converged however far it
-        // is cut is the limit load (CollapseDetector), not an error.
-        if (collapse_detector.active() && cuts >= newton.max_step_cuts())
-          {
-            newton.log_failure(result,
-                               lambda,
-                               delta,
-                               pcout.is_active() ? &pcout.get_stream() :
-                                                   nullptr);
-            collapse_detector.failed_increment(step,
-                                               lambda,
-                                               delta,
-                                               result.failure);
-            return false;
-          }
-        newton.report_failure(
-          result,
-          step,
-          lambda,
-          delta,
-          cuts,
-          pcout.is_active() ? &pcout.get_stream() : nullptr,
-          contact.enabled() ?
-            " With rigid bodies: a body that only friction holds has no "
-            "quasi-static equilibrium once it slides (on an incline steeper "
-            "than its friction angle); hold it, or move the rigid body "
-            "instead." :
-            "");
-        return false;
-      }
-    TimerOutput::Scope t(timer, "update points");
-    increment_solver->accept(increment, delta);
-    record.n_yielded =
-      constitutive_update->commit(points,
-                                  grid,
-                                  assembly->kernel(),
-                                  increment,
-                                  has_prescribed ? &prescribed : nullptr);
-    return true;
-  }
-
-
-
-  void
   Scene::write_checkpoint(const unsigned int step)
   {
     RunSummary so_far = run_summary;
     so_far.add_timing(timer, total_timer.wall_time());
     TimerOutput::Scope t(timer, "checkpoint");
-    // Where the next step's Newton iterations start, and the contact's
-    // state (the same on every process).
-    std::ostringstream scene_state;
-    {
-      const IncrementSolver::Memory   memory = increment_solver->memory();
-      boost::archive::binary_oarchive archive(scene_state);
-      archive << memory << collapse_detector;
-      if (contact.enabled())
-        archive << contact;
-    }
-    checkpoint.write(step,
-                     grid,
-                     points,
-                     so_far,
-                     output,
-                     assembly->weak_cells_of_last_matrix(),
-                     scene_state.str());
+    run_checkpoint->write(step, so_far, output);
   }
 } // namespace bsmpm

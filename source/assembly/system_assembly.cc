@@ -35,13 +35,13 @@ namespace bsmpm
     // With a ghost penalty the first assembly makes the matrix, with the
     // couplings across the faces of the weak cells it then knows: making
     // it here too would double the set-up of the matrix.
-    const bool fits =
-      parts.implicit_boundary.fits_prescribed_displacement(parts.curves);
-    if (!parts.ghost_penalty.enabled() || fits)
+    fitting_method =
+      parts.supports.fitting_prescribed_displacement(parts.curves);
+    if (!parts.ghost_penalty.enabled() || fitting_method != nullptr)
       make_matrix(
         std::vector<bool>(grid.triangulation().n_active_cells(), false));
     system_rhs.reinit(grid.locally_owned_dofs(), comm);
-    if (fits)
+    if (fitting_method != nullptr)
       boundary_fit_matrix.reinit(system_matrix);
   }
 
@@ -154,12 +154,8 @@ namespace bsmpm
     // too (a roller alone would leave them free to slide).
     std::vector<bool> supporting(grid.triangulation().n_active_cells(), false);
     if (!parts.curves.empty())
-      {
-        for (const auto method :
-             {BoundaryCurve::DirichletMethod::implicit_boundary,
-              BoundaryCurve::DirichletMethod::nitsche})
-          parts.curves.mark_support_cells(grid, method, true, supporting);
-      }
+      for (const auto &method : parts.supports)
+        method->mark_cells(grid, parts.curves, true, supporting);
     LinearAlgebra::distributed::Vector<double> support(
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
     std::vector<types::global_dof_index> dof_indices(
@@ -195,14 +191,40 @@ namespace bsmpm
 
 
 
-  void
-  SystemAssembly::assemble(
-    const double                                      load_factor,
-    const double                                      increment_factor,
-    const std::vector<CellMoments>                   &moments,
-    const std::vector<double>                        &quality,
-    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  double
+  SystemAssembly::fit_prescribed_displacement(const double increment_factor)
   {
+    TimerOutput::Scope t(timer, "prescribed displacement fit");
+    has_prescribed = true;
+    return fitting_method->fit_prescribed_displacement(support_context(),
+                                                       increment_factor,
+                                                       boundary_fit_matrix,
+                                                       prescribed);
+  }
+
+
+
+  SupportMethod::Context
+  SystemAssembly::support_context() const
+  {
+    return {parts.curves,
+            parts.grid,
+            *cell_kernel,
+            parts.material,
+            parts.exact_solution,
+            parts.finite_strain};
+  }
+
+
+
+  void
+  SystemAssembly::assemble(const double                    load_factor,
+                           const double                    increment_factor,
+                           const std::vector<CellMoments> &moments,
+                           const std::vector<double>      &quality)
+  {
+    const LinearAlgebra::distributed::Vector<double> *prescribed =
+      prescribed_displacement();
     const BackgroundGrid &grid        = parts.grid;
     const Q1CellKernel   &kernel      = *cell_kernel;
     const auto           &constraints = system_constraints;
@@ -245,21 +267,22 @@ namespace bsmpm
         if (m.v == 0.)
           continue;
 
-        cell_matrix = 0;
-        cell_rhs    = 0;
-        internal    = 0;
-        const bool points_here =
-          material_from_points &&
-          (material_points->holds_material(cell) ||
-           (pointless_cells_from_points &&
-            !material_points->neighbourhood_mean_properties(cell).empty()));
+        cell_matrix                  = 0;
+        cell_rhs                     = 0;
+        internal                     = 0;
+        const MaterialPoints *points = parts.material_points;
+        const bool            points_here =
+          points != nullptr &&
+          (points->holds_material(cell) ||
+           (parts.cells_without_points &&
+            !points->neighbourhood_mean_properties(cell).empty()));
         if (!points_here)
           {
             kernel.add_stiffness(m, cell_matrix);
             kernel.add_internal_force(m, internal);
           }
         // In finite strain the points carry the body force on their masses.
-        if (has_body_force && !(finite_strain && points_here))
+        if (has_body_force && !(parts.finite_strain && points_here))
           kernel.add_body_force(m, body_force, cell_rhs);
         cell_rhs -= internal;
 
@@ -301,14 +324,10 @@ namespace bsmpm
       }
     // Before the system's own implicit boundary terms, whose band points
     // the implicit boundary keeps.
-    if (!support_curves.empty())
-      assemble_support_terms(increment_factor, prescribed);
-    add_support_terms(increment_factor,
-                      prescribed,
-                      constraints,
-                      system_matrix,
-                      system_rhs,
-                      nullptr);
+    if (!parts.reaction_curves.empty())
+      assemble_support_terms(increment_factor);
+    add_support_terms(
+      increment_factor, constraints, system_matrix, system_rhs, nullptr);
     if (parts.curves.has_loads())
       {
         TimerOutput::Scope t(timer, "neumann loads");
@@ -319,7 +338,8 @@ namespace bsmpm
                                      load_factor,
                                      constraints,
                                      system_rhs,
-                                     finite_strain ? &system_matrix : nullptr);
+                                     parts.finite_strain ? &system_matrix :
+                                                           nullptr);
       }
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
@@ -332,7 +352,7 @@ namespace bsmpm
   SystemAssembly::reference_loads(const std::vector<CellMoments> &moments,
                                   TrilinosWrappers::MPI::Vector  &loads)
   {
-    AssertThrow(!finite_strain,
+    AssertThrow(!parts.finite_strain,
                 ExcMessage("Displacement control is for small strain only: "
                            "in finite strain the loads follow the body."));
     TimerOutput::Scope t(timer, "assembly");
@@ -374,12 +394,11 @@ namespace bsmpm
 
 
   void
-  SystemAssembly::assemble_support_terms(
-    const double                                      increment_factor,
-    const LinearAlgebra::distributed::Vector<double> *prescribed)
+  SystemAssembly::assemble_support_terms(const double increment_factor)
   {
-    TimerOutput::Scope t(timer, "reactions");
-    const unsigned int n = support_curves.size();
+    TimerOutput::Scope               t(timer, "reactions");
+    const std::vector<unsigned int> &support_curves = parts.reaction_curves;
+    const unsigned int               n              = support_curves.size();
     if (!support_layout_current || support_matrices.size() != n)
       {
         support_matrices.resize(n);
@@ -404,7 +423,6 @@ namespace bsmpm
         support_matrices[c] = 0;
         support_rhs[c]      = 0;
         add_support_terms(increment_factor,
-                          prescribed,
                           none,
                           support_matrices[c],
                           support_rhs[c],
@@ -418,58 +436,37 @@ namespace bsmpm
 
   void
   SystemAssembly::add_support_terms(
-    const double                                      increment_factor,
-    const LinearAlgebra::distributed::Vector<double> *prescribed,
-    const AffineConstraints<double>                  &constraints,
-    TrilinosWrappers::SparseMatrix                   &matrix,
-    TrilinosWrappers::MPI::Vector                    &rhs,
-    const BoundaryCurve                              *only)
+    const double                     increment_factor,
+    const AffineConstraints<double> &constraints,
+    TrilinosWrappers::SparseMatrix  &matrix,
+    TrilinosWrappers::MPI::Vector   &rhs,
+    const BoundaryCurve             *only)
   {
-    const auto uses = [&](const BoundaryCurve::DirichletMethod method) {
-      return only != nullptr ? only->dirichlet_method == method :
-                               parts.curves.has_supports(method);
-    };
-    if (uses(BoundaryCurve::DirichletMethod::implicit_boundary))
+    const SupportMethod::Context context = support_context();
+    bool                         any     = false;
+    for (const auto &method : parts.supports)
+      if (only != nullptr ? method->imposes(*only) :
+                            method->used_by(parts.curves))
+        {
+          TimerOutput::Scope t(timer, method->name());
+          method->assemble(context,
+                           increment_factor,
+                           prescribed_displacement(),
+                           assembly_moments,
+                           constraints,
+                           matrix,
+                           rhs,
+                           only);
+          any = true;
+        }
+    // The bands by cell, for the tangent of nonlinear materials.
+    if (any && only == nullptr && parts.material_points != nullptr)
       {
-        TimerOutput::Scope t(timer, "implicit boundary");
-        parts.implicit_boundary.assemble(parts.curves,
-                                         parts.grid,
-                                         *cell_kernel,
-                                         parts.material.stiffness(),
-                                         prescribed,
-                                         parts.exact_solution,
-                                         increment_factor,
-                                         constraints,
-                                         matrix,
-                                         rhs,
-                                         only,
-                                         assembly_moments,
-                                         finite_strain);
-        // The band by cell, for the tangent of nonlinear materials.
-        if (only == nullptr && material_from_points)
-          {
-            support_bands.assign(parts.grid.triangulation().n_active_cells(),
-                                 {});
-            for (const auto &b : parts.implicit_boundary.band_points())
-              support_bands[b.cell_index].push_back(
-                {b.reference_position, b.weight});
-          }
-      }
-    if (uses(BoundaryCurve::DirichletMethod::nitsche))
-      {
-        TimerOutput::Scope t(timer, "nitsche");
-        parts.nitsche_boundary.assemble(parts.curves,
-                                        parts.grid,
-                                        *cell_kernel,
-                                        parts.material,
-                                        parts.exact_solution,
-                                        increment_factor,
-                                        constraints,
-                                        matrix,
-                                        rhs,
-                                        only,
-                                        assembly_moments,
-                                        finite_strain);
+        support_bands.assign(parts.grid.triangulation().n_active_cells(), {});
+        for (const auto &method : parts.supports)
+          for (const auto &b : method->band_points())
+            support_bands[b.cell_index].push_back(
+              {b.reference_position, b.weight});
       }
   }
 
@@ -480,7 +477,8 @@ namespace bsmpm
     const unsigned int                                curve,
     const LinearAlgebra::distributed::Vector<double> &increment) const
   {
-    const auto c = static_cast<unsigned int>(
+    const std::vector<unsigned int> &support_curves = parts.reaction_curves;
+    const auto                       c              = static_cast<unsigned int>(
       std::find(support_curves.begin(), support_curves.end(), curve) -
       support_curves.begin());
     AssertThrow(c < support_matrices.size(),
@@ -555,16 +553,16 @@ namespace bsmpm
     // Contact forces are loads that depend on the increment: they join the
     // residual with the sign of the loads and their derivative the tangent.
     TrilinosWrappers::MPI::Vector contact_force;
-    if (contact != nullptr)
+    if (parts.contact != nullptr)
       {
         contact_force.reinit(newton_residual);
-        contact_symmetric = contact->add_newton_terms(grid,
-                                                      *cell_kernel,
-                                                      increment,
-                                                      prescribed,
-                                                      system_constraints,
-                                                      tangent_matrix,
-                                                      contact_force);
+        contact_symmetric = parts.contact->add_newton_terms(grid,
+                                                            *cell_kernel,
+                                                            increment,
+                                                            prescribed,
+                                                            system_constraints,
+                                                            tangent_matrix,
+                                                            contact_force);
         contact_force.compress(VectorOperation::add);
       }
     // Finite strain: the supports' terms that depend on the stress of the
@@ -572,7 +570,7 @@ namespace bsmpm
     // strain"), apart from the points' internal force, whose size stays
     // the scale of the residual.
     TrilinosWrappers::MPI::Vector support_force;
-    if (finite_strain)
+    if (parts.finite_strain)
       {
         support_force.reinit(newton_residual);
         inverted += add_finite_strain_support_terms(update,
@@ -585,7 +583,8 @@ namespace bsmpm
         // constraints (support_forces()).
         AffineConstraints<double> none;
         none.close();
-        const auto &curves = parts.curves.get_curves();
+        const auto &curves         = parts.curves.get_curves();
+        const auto &support_curves = parts.reaction_curves;
         support_finite_strain_forces.resize(support_curves.size());
         for (unsigned int c = 0; c < support_curves.size(); ++c)
           {
@@ -603,9 +602,9 @@ namespace bsmpm
     internal_force.compress(VectorOperation::add);
     internal_force_norm = internal_force.l2_norm();
     newton_residual -= internal_force;
-    if (finite_strain)
+    if (parts.finite_strain)
       newton_residual -= support_force;
-    if (contact != nullptr)
+    if (parts.contact != nullptr)
       newton_residual += contact_force;
     yielding = Utilities::MPI::sum(yielding, grid.mpi_communicator());
     // An increment that inverts a point is no admissible state: its |R| is
@@ -638,30 +637,12 @@ namespace bsmpm
         inverted += !admissible;
         return admissible;
       };
-    const auto uses = [&](const BoundaryCurve::DirichletMethod method) {
-      return only != nullptr ? only->dirichlet_method == method :
-                               parts.curves.has_supports(method);
-    };
-    if (uses(BoundaryCurve::DirichletMethod::implicit_boundary))
-      parts.implicit_boundary.add_finite_strain_terms(parts.curves,
-                                                      parts.grid,
-                                                      *cell_kernel,
-                                                      increment,
-                                                      stress,
-                                                      constraints,
-                                                      tangent,
-                                                      force,
-                                                      only);
-    if (uses(BoundaryCurve::DirichletMethod::nitsche))
-      parts.nitsche_boundary.add_finite_strain_terms(parts.curves,
-                                                     parts.grid,
-                                                     *cell_kernel,
-                                                     increment,
-                                                     stress,
-                                                     constraints,
-                                                     tangent,
-                                                     force,
-                                                     only);
+    const SupportMethod::Context context = support_context();
+    for (const auto &method : parts.supports)
+      if (only != nullptr ? method->imposes(*only) :
+                            method->used_by(parts.curves))
+        method->add_finite_strain_terms(
+          context, increment, stress, constraints, tangent, force, only);
     return inverted;
   }
 

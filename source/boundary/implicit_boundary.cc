@@ -5,6 +5,7 @@
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/boundary/curve_piece_values.h>
 #include <bsmpm/boundary/implicit_boundary.h>
 
 #include <cmath>
@@ -72,6 +73,17 @@ namespace bsmpm
       }
     };
   } // namespace
+
+
+
+  BSMPM_REGISTER_SUPPORT_METHOD(ImplicitBoundary, "implicit boundary")
+
+
+
+  ImplicitBoundary::ImplicitBoundary()
+    : SupportMethod("implicit boundary",
+                    BoundaryCurve::DirichletMethod::implicit_boundary)
+  {}
 
 
 
@@ -170,22 +182,9 @@ namespace bsmpm
 
 
   void
-  ImplicitBoundary::assemble(
-    const BoundaryCurves                             &curves,
-    const BackgroundGrid                             &grid,
-    const Q1CellKernel                               &kernel,
-    const Tensor<2, 3>                               &C,
-    const LinearAlgebra::distributed::Vector<double> *prescribed,
-    const ExactSolution                              *exact,
-    const double                                      increment_factor,
-    const AffineConstraints<double>                  &constraints,
-    TrilinosWrappers::SparseMatrix                   &matrix,
-    TrilinosWrappers::MPI::Vector                    &rhs,
-    const BoundaryCurve                              *only,
-    const std::vector<CellMoments>                   *moments,
-    const bool                                        finite_strain)
+  ImplicitBoundary::check_formulation(const BoundaryCurves &curves,
+                                      const bool            finite_strain) const
   {
-    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     // Every process holds every curve: the check is collective.
     if (formulation != Formulation::consistent)
       for (const auto &curve : curves.get_curves())
@@ -223,6 +222,33 @@ namespace bsmpm
           "boundary/Formulation = nearest-point correction' (the default, "
           "exact in finite strain) or the curves' 'Dirichlet method = "
           "nitsche'."));
+  }
+
+
+
+  void
+  ImplicitBoundary::assemble(
+    const Context                                    &context,
+    const double                                      increment_factor,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const std::vector<CellMoments>                   *moments,
+    const AffineConstraints<double>                  &constraints,
+    TrilinosWrappers::SparseMatrix                   &matrix,
+    TrilinosWrappers::MPI::Vector                    &rhs,
+    const BoundaryCurve                              *only)
+  {
+    const BoundaryCurves  &curves        = context.curves;
+    const BackgroundGrid  &grid          = context.grid;
+    const Q1CellKernel    &kernel        = context.kernel;
+    const Tensor<2, 3>    &C             = context.material.stiffness();
+    const ExactSolution   *exact         = context.exact_solution;
+    const bool             finite_strain = context.finite_strain;
+    constexpr unsigned int n             = Q1CellKernel::dofs_per_cell;
+    check_formulation(curves, finite_strain);
+    // One function for the three formulations (about 200 lines): they share
+    // the pieces, the band's geometry at each Gauss point and its band
+    // points, and differ only in the band strain at a band point, which
+    // reads best next to the other.
     points.clear();
     last_increment_factor = increment_factor;
     last_exact            = exact;
@@ -230,220 +256,191 @@ namespace bsmpm
     const double    delta = band_width(grid);
     const QGauss<1> along(points_along), across(points_across);
 
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_rhs(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    std::array<Voigt, n>                 B1, B2, CB1, CB2;
-    std::array<Tensor<1, 2>, n>          trace, trace_dt;
-    Q1CellKernel::LocalVector            da;
+    FullMatrix<double>        cell_matrix(n, n);
+    Vector<double>            cell_rhs(n);
+    std::array<Voigt, n>      B1, B2, CB1, CB2;
+    Q1CellKernel::LocalVector da;
+    CurvePieceValues          values(grid, along);
+    BoundaryFrame             frame;
 
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (!is_ibm_support(curve, condition) ||
-              (only != nullptr && &curve != only))
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell == grid.dof_handler().end())
-            continue;
-          cell->get_dof_indices(dof_indices);
-          if (prescribed)
-            for (unsigned int i = 0; i < n; ++i)
-              da[i] = (*prescribed)(dof_indices[i]);
+    for (const auto &piece : supported_pieces(values, curves, only))
+      {
+        values.reinit(piece);
+        const CurveCondition *condition   = piece.condition;
+        const auto           &cell        = piece.owned_cell;
+        const auto           &dof_indices = values.dof_indices();
+        if (prescribed)
+          for (unsigned int i = 0; i < n; ++i)
+            da[i] = (*prescribed)(dof_indices[i]);
 
-          // A roller and a prescribed normal displacement hold the normal
-          // component only.
-          const bool roller  = condition->holds_normal_component_only();
-          const bool imposes = formulation == Formulation::consistent &&
-                               condition->prescribes_displacement();
-          const BSplineCurve &spline = *curve.spline;
-          const double        du     = piece.u_end - piece.u_begin;
-          // B-bar: the regular strain's stress takes the volumetric strain
-          // at the centroid of the cell's material, as the points'
-          // stiffness does (Q1CellKernel::stress_column()).
-          const Point<2> centroid =
-            moments != nullptr ?
-              Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
-              Point<2>();
-          cell_matrix = 0;
-          cell_rhs    = 0;
+        // A roller and a prescribed normal displacement hold the normal
+        // component only.
+        const bool roller  = condition->holds_normal_component_only();
+        const bool imposes = formulation == Formulation::consistent &&
+                             condition->prescribes_displacement();
+        // B-bar: the regular strain's stress takes the volumetric strain
+        // at the centroid of the cell's material, as the points'
+        // stiffness does (Q1CellKernel::stress_column()).
+        const Point<2> centroid =
+          moments != nullptr ?
+            Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
+            Point<2>();
+        cell_matrix = 0;
+        cell_rhs    = 0;
 
-          for (unsigned int q = 0; q < along.size(); ++q)
-            {
-              const double       u = piece.u_begin + along.point(q)[0] * du;
-              const Point<2>     c = spline.value(u);
-              const Tensor<1, 2> outward = spline.outward_normal(u);
-              const Tensor<1, 2> normal  = -outward; // inward
-              const Tensor<1, 2> tangent({-normal[1], normal[0]});
-              const double       ds =
-                spline.derivative(u).norm() * du * along.weight(q);
-              const Tensor<2, 2> nn   = outer_product(normal, normal);
-              const Point<2>     st_c = grid.local_coordinates(c, piece.cell);
-              // The grid field on the boundary: its value and derivative
-              // along the boundary, per shape function.
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  trace[i]    = kernel.shape_value(i, st_c);
-                  trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent;
-                }
-              // The boundary's stress from the previous steps: the band's
-              // share of the internal force, int B2^T sigma, which carries
-              // the support's reaction from step to step.
-              const Voigt sigma_previous = curve.stress_at(piece.segment, u);
-              // The prescribed increment g on the boundary and its
-              // derivative along it (central differences along the curve).
-              // A normal displacement is g = g_n n with n the normal at c
-              // (the roller's terms treat n as constant across the band and
-              // along the piece).
-              Tensor<1, 2> g, dg_dt;
-              if (imposes)
-                {
-                  const double   tau = 1e-6 * du;
-                  const Point<2> a   = spline.value(u - tau),
-                                 b   = spline.value(u + tau);
-                  g                  = increment_factor *
-                      prescribed_value(*condition, exact, c, outward);
-                  if (problem.empty() &&
-                      !(std::isfinite(g[0]) && std::isfinite(g[1])))
-                    problem = condition->where +
-                              ": the prescribed displacement is not finite "
-                              "at (" +
-                              std::to_string(c[0]) + ", " +
-                              std::to_string(c[1]) + "): check the expression.";
-                  dg_dt = increment_factor *
-                          (prescribed_value(*condition, exact, b, outward) -
-                           prescribed_value(*condition, exact, a, outward)) /
-                          ((b - a) * tangent);
-                }
+        for (unsigned int q = 0; q < along.size(); ++q)
+          {
+            const Point<2> &c  = values.position(q);
+            const double    ds = values.JxW(q);
+            boundary_frame(values,
+                           q,
+                           kernel,
+                           imposes ? condition : nullptr,
+                           increment_factor,
+                           exact,
+                           frame);
+            const Tensor<1, 2> &normal = frame.normal, &tangent = frame.tangent;
+            const Tensor<2, 2> &nn    = frame.nn;
+            const auto         &trace = frame.trace, &trace_dt = frame.trace_dt;
+            const Tensor<1, 2> &g = frame.g, &dg_dt = frame.dg_dt;
+            if (imposes && problem.empty() &&
+                !(std::isfinite(g[0]) && std::isfinite(g[1])))
+              problem = condition->where +
+                        ": the prescribed displacement is not finite at (" +
+                        std::to_string(c[0]) + ", " + std::to_string(c[1]) +
+                        "): check the expression.";
+            // The boundary's stress from the previous steps: the band's
+            // share of the internal force, int B2^T sigma, which carries
+            // the support's reaction from step to step.
+            const Voigt sigma_previous =
+              piece.curve->stress_at(piece.segment, values.parameter(q));
 
-              for (unsigned int r = 0; r < across.size(); ++r)
-                {
-                  const double   phi = delta * across.point(r)[0];
-                  const double   w   = ds * delta * across.weight(r);
-                  const double   D   = d_function(phi, delta);
-                  const double   dD  = d_function_derivative(phi, delta);
-                  const Point<2> x   = c + phi * normal;
-                  const Point<2> st  = grid.local_coordinates(x, piece.cell);
-                  points.push_back({x, D, w, cell->active_cell_index(), st});
-                  // Finite strain: the consistent band's terms come per
-                  // Newton iteration (add_finite_strain_terms()).
-                  if (finite_strain && formulation == Formulation::consistent)
-                    continue;
+            for (unsigned int r = 0; r < across.size(); ++r)
+              {
+                const double   phi = delta * across.point(r)[0];
+                const double   w   = ds * delta * across.weight(r);
+                const double   D   = d_function(phi, delta);
+                const double   dD  = d_function_derivative(phi, delta);
+                const Point<2> x   = c + phi * normal;
+                const Point<2> st  = grid.local_coordinates(x, piece.cell);
+                points.push_back({x, D, w, cell->active_cell_index(), st});
+                // Finite strain: the consistent band's terms come per
+                // Newton iteration (add_finite_strain_terms()).
+                if (finite_strain && formulation == Formulation::consistent)
+                  continue;
 
-                  Voigt strain_a;
-                  if (prescribed)
+                Voigt strain_a;
+                if (prescribed)
+                  for (unsigned int i = 0; i < n; ++i)
+                    strain_a += da[i] * kernel.strain_column(i, st);
+
+                if (formulation == Formulation::consistent)
+                  {
+                    // u = w - (1 - D) P w(c): its strain is B + Delta,
+                    // with Delta the band's correction to the regular
+                    // strain B, which the material points integrate.
                     for (unsigned int i = 0; i < n; ++i)
-                      strain_a += da[i] * kernel.strain_column(i, st);
+                      {
+                        B1[i] = kernel.strain_column(i, st);
+                        if (roller)
+                          B2[i] = voigt(dD * (trace[i] * normal) * nn -
+                                        (1 - D) * (trace_dt[i] * normal) *
+                                          outer_product(normal, tangent));
+                        else
+                          // A fixed or prescribed support keeps the
+                          // normal part only: the tangential part,
+                          // -(1 - D) dw(c)/dt (x) t, integrates across
+                          // the band to (delta / 3) dw/dt, whose sum
+                          // along a side leaves (delta / 3) w . sigma t
+                          // at its ends: at a corner of two displacement
+                          // supports the tangents differ and a linear
+                          // field is off by O(delta) (doc/
+                          // implicit-boundary.md, "The band at corners").
+                          // Without it, int Delta^T sigma over the band is
+                          // exactly the boundary flux int w . sigma n,
+                          // corners or not.
+                          B2[i] = voigt(dD * outer_product(trace[i], normal));
+                        CB1[i] = kernel.stress_column(
+                          i, st, moments != nullptr ? centroid : st);
+                        CB2[i] = C * B2[i];
+                      }
+                    // (B + Delta)^T C (B + Delta) - B^T C B, with B-bar
+                    // (Bbar + Delta)^T C (Bbar + Delta) - Bbar^T C Bbar:
+                    // Delta has no zz part, so Bbar^T C Delta is the
+                    // B-bar stress of B times Delta.
+                    for (unsigned int i = 0; i < n; ++i)
+                      for (unsigned int j = 0; j < n; ++j)
+                        cell_matrix(i, j) +=
+                          w *
+                          (CB1[i] * B2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+                    // Band part of f^d, int Delta^T C B d^a, and of the
+                    // internal force.
+                    const Voigt sigma = sigma_previous + C * strain_a;
+                    for (unsigned int i = 0; i < n; ++i)
+                      cell_rhs[i] -= w * B2[i] * sigma;
+                    // u = w - (1 - D) P (w(c) - g), P g = g: the band
+                    // strain of g, Delta_g, enters the energy like a
+                    // prescribed strain.
+                    if (imposes)
+                      {
+                        // The same band strain as that of w (no
+                        // tangential part for a full displacement), so
+                        // that w(c) = g(c) leaves no band strain at all.
+                        const Voigt strain_g =
+                          roller ?
+                            voigt(dD * outer_product(g, normal) -
+                                  (1 - D) * outer_product(dg_dt, tangent)) :
+                            voigt(dD * outer_product(g, normal));
+                        const Voigt sigma_g = C * strain_g;
+                        for (unsigned int i = 0; i < n; ++i)
+                          cell_rhs[i] +=
+                            w * (CB1[i] * strain_g + B2[i] * sigma_g);
+                      }
+                    continue;
+                  }
 
-                  if (formulation == Formulation::consistent)
-                    {
-                      // u = w - (1 - D) P w(c): its strain is B + Delta,
-                      // with Delta the band's correction to the regular
-                      // strain B, which the material points integrate.
-                      for (unsigned int i = 0; i < n; ++i)
-                        {
-                          B1[i] = kernel.strain_column(i, st);
-                          if (roller)
-                            B2[i] = voigt(dD * (trace[i] * normal) * nn -
-                                          (1 - D) * (trace_dt[i] * normal) *
-                                            outer_product(normal, tangent));
-                          else
-                            // A fixed or prescribed support keeps the
-                            // normal part only: the tangential part,
-                            // -(1 - D) dw(c)/dt (x) t, integrates across
-                            // the band to (delta / 3) dw/dt, whose sum
-                            // along a side leaves (delta / 3) w . sigma t
-                            // at its ends: at a corner of two displacement
-                            // supports the tangents differ and a linear
-                            // field is off by O(delta) (doc/
-                            // implicit-boundary.md, "The band at corners").
-                            // Without it, int Delta^T sigma over the band is
-                            // exactly the boundary flux int w . sigma n,
-                            // corners or not.
-                            B2[i] = voigt(dD * outer_product(trace[i], normal));
-                          CB1[i] = kernel.stress_column(
-                            i, st, moments != nullptr ? centroid : st);
-                          CB2[i] = C * B2[i];
-                        }
-                      // (B + Delta)^T C (B + Delta) - B^T C B, with B-bar
-                      // (Bbar + Delta)^T C (Bbar + Delta) - Bbar^T C Bbar:
-                      // Delta has no zz part, so Bbar^T C Delta is the
-                      // B-bar stress of B times Delta.
-                      for (unsigned int i = 0; i < n; ++i)
-                        for (unsigned int j = 0; j < n; ++j)
-                          cell_matrix(i, j) +=
-                            w *
-                            (CB1[i] * B2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
-                      // Band part of f^d, int Delta^T C B d^a, and of the
-                      // internal force.
-                      const Voigt sigma = sigma_previous + C * strain_a;
-                      for (unsigned int i = 0; i < n; ++i)
-                        cell_rhs[i] -= w * B2[i] * sigma;
-                      // u = w - (1 - D) P (w(c) - g), P g = g: the band
-                      // strain of g, Delta_g, enters the energy like a
-                      // prescribed strain.
-                      if (imposes)
-                        {
-                          // The same band strain as that of w (no
-                          // tangential part for a full displacement), so
-                          // that w(c) = g(c) leaves no band strain at all.
-                          const Voigt strain_g =
-                            roller ?
-                              voigt(dD * outer_product(g, normal) -
-                                    (1 - D) * outer_product(dg_dt, tangent)) :
-                              voigt(dD * outer_product(g, normal));
-                          const Voigt sigma_g = C * strain_g;
-                          for (unsigned int i = 0; i < n; ++i)
-                            cell_rhs[i] +=
-                              w * (CB1[i] * strain_g + B2[i] * sigma_g);
-                        }
-                      continue;
-                    }
-
-                  // u = P(D) w: grad u = P grad w + (dP/dphi) w (x) n.
-                  Tensor<2, 2> P, dP;
-                  if (roller)
-                    {
-                      P  = unit_symmetric_tensor<2>() + (D - 1) * nn;
-                      dP = dD * nn;
-                    }
-                  else
-                    {
-                      P  = D * unit_symmetric_tensor<2>();
-                      dP = dD * unit_symmetric_tensor<2>();
-                    }
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      const Tensor<1, 2> value = kernel.shape_value(i, st);
-                      B1[i] = voigt(P * kernel.shape_gradient(i, st));
-                      if (roller && formulation == Formulation::paper)
-                        // eqs. 23-26: (d D / d x, d D / d y) of the normal
-                        // component, which J_T extracts from w.
-                        B2[i] = dD * (normal * value) *
-                                Voigt({normal[0], 0., normal[1]});
-                      else
-                        B2[i] = voigt(outer_product(dP * value, normal));
-                      CB1[i] = C * B1[i];
-                      CB2[i] = C * B2[i];
-                    }
-                  // k2 + k2^T + k3 (eqs. 24, 25).
-                  for (unsigned int i = 0; i < n; ++i)
-                    for (unsigned int j = 0; j < n; ++j)
-                      cell_matrix(i, j) +=
-                        w * (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
-                  // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33),
-                  // and of the internal force.
-                  const Voigt sigma_a = C * strain_a;
-                  for (unsigned int i = 0; i < n; ++i)
-                    cell_rhs[i] -=
-                      w * ((B1[i] + B2[i]) * sigma_a + B2[i] * sigma_previous);
-                }
-            }
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, dof_indices, matrix, rhs);
-        }
+                // u = P(D) w: grad u = P grad w + (dP/dphi) w (x) n.
+                Tensor<2, 2> P, dP;
+                if (roller)
+                  {
+                    P  = unit_symmetric_tensor<2>() + (D - 1) * nn;
+                    dP = dD * nn;
+                  }
+                else
+                  {
+                    P  = D * unit_symmetric_tensor<2>();
+                    dP = dD * unit_symmetric_tensor<2>();
+                  }
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    const Tensor<1, 2> value = kernel.shape_value(i, st);
+                    B1[i] = voigt(P * kernel.shape_gradient(i, st));
+                    if (roller && formulation == Formulation::paper)
+                      // eqs. 23-26: (d D / d x, d D / d y) of the normal
+                      // component, which J_T extracts from w.
+                      B2[i] = dD * (normal * value) *
+                              Voigt({normal[0], 0., normal[1]});
+                    else
+                      B2[i] = voigt(outer_product(dP * value, normal));
+                    CB1[i] = C * B1[i];
+                    CB2[i] = C * B2[i];
+                  }
+                // k2 + k2^T + k3 (eqs. 24, 25).
+                for (unsigned int i = 0; i < n; ++i)
+                  for (unsigned int j = 0; j < n; ++j)
+                    cell_matrix(i, j) +=
+                      w * (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+                // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33),
+                // and of the internal force.
+                const Voigt sigma_a = C * strain_a;
+                for (unsigned int i = 0; i < n; ++i)
+                  cell_rhs[i] -=
+                    w * ((B1[i] + B2[i]) * sigma_a + B2[i] * sigma_previous);
+              }
+          }
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_rhs, dof_indices, matrix, rhs);
+      }
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 
@@ -451,9 +448,7 @@ namespace bsmpm
 
   void
   ImplicitBoundary::add_finite_strain_terms(
-    const BoundaryCurves                             &curves,
-    const BackgroundGrid                             &grid,
-    const Q1CellKernel                               &kernel,
+    const Context                                    &context,
     const LinearAlgebra::distributed::Vector<double> &increment,
     const SupportStress                              &stress,
     const AffineConstraints<double>                  &constraints,
@@ -463,163 +458,181 @@ namespace bsmpm
   {
     if (formulation != Formulation::consistent)
       return;
-    constexpr unsigned int n     = Q1CellKernel::dofs_per_cell;
-    const double           delta = band_width(grid);
+    const BoundaryCurves  &curves = context.curves;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
+    const double           delta  = band_width(grid);
     const QGauss<1>        along(points_along), across(points_across);
 
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_force(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    Q1CellKernel::LocalVector            d;
-    std::array<Tensor<1, 2>, n>          trace, trace_dt;
+    FullMatrix<double>        cell_matrix(n, n);
+    Vector<double>            cell_force(n);
+    Q1CellKernel::LocalVector d;
     // Per shape function: its gradient G, its band correction Delta, the
     // band's gradient G + Delta, and A : (G + Delta), A : G.
     std::array<Tensor<2, 2>, n> G, Delta, T, AT, AG;
+    CurvePieceValues            values(grid, along);
+    BoundaryFrame               frame;
 
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (!is_ibm_support(curve, condition) ||
-              (only != nullptr && &curve != only))
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell == grid.dof_handler().end())
-            continue;
-          cell->get_dof_indices(dof_indices);
-          for (unsigned int i = 0; i < n; ++i)
-            d[i] = increment(dof_indices[i]);
-          const bool          roller = condition->holds_normal_component_only();
-          const bool          imposes = condition->prescribes_displacement();
-          const BSplineCurve &spline  = *curve.spline;
-          const double        du      = piece.u_end - piece.u_begin;
-          cell_matrix                 = 0;
-          cell_force                  = 0;
+    for (const auto &piece : supported_pieces(values, curves, only))
+      {
+        values.reinit(piece);
+        const CurveCondition *condition   = piece.condition;
+        const auto           &dof_indices = values.dof_indices();
+        for (unsigned int i = 0; i < n; ++i)
+          d[i] = increment(dof_indices[i]);
+        const bool roller  = condition->holds_normal_component_only();
+        const bool imposes = condition->prescribes_displacement();
+        cell_matrix        = 0;
+        cell_force         = 0;
 
-          for (unsigned int q = 0; q < along.size(); ++q)
-            {
-              // The geometry and prescribed data of assemble().
-              const double       u = piece.u_begin + along.point(q)[0] * du;
-              const Point<2>     c = spline.value(u);
-              const Tensor<1, 2> outward = spline.outward_normal(u);
-              const Tensor<1, 2> normal  = -outward;
-              const Tensor<1, 2> tangent_({-normal[1], normal[0]});
-              const double       ds =
-                spline.derivative(u).norm() * du * along.weight(q);
-              const Tensor<2, 2> nn   = outer_product(normal, normal);
-              const Point<2>     st_c = grid.local_coordinates(c, piece.cell);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  trace[i]    = kernel.shape_value(i, st_c);
-                  trace_dt[i] = kernel.shape_gradient(i, st_c) * tangent_;
-                }
-              Tensor<1, 2> g, dg_dt;
-              if (imposes)
-                {
-                  const double   tau = 1e-6 * du;
-                  const Point<2> a   = spline.value(u - tau),
-                                 b   = spline.value(u + tau);
-                  g                  = last_increment_factor *
-                      prescribed_value(*condition, last_exact, c, outward);
-                  dg_dt =
-                    last_increment_factor *
-                    (prescribed_value(*condition, last_exact, b, outward) -
-                     prescribed_value(*condition, last_exact, a, outward)) /
-                    ((b - a) * tangent_);
-                }
-              // The state of the boundary as of the step's start.
-              const std::vector<double> props =
-                curve.state_at(piece.segment, u);
-              const ArrayView<const double> state(props.data(), props.size());
+        for (unsigned int q = 0; q < along.size(); ++q)
+          {
+            // The geometry and prescribed data of assemble().
+            const Point<2> &c  = values.position(q);
+            const double    ds = values.JxW(q);
+            boundary_frame(values,
+                           q,
+                           kernel,
+                           imposes ? condition : nullptr,
+                           last_increment_factor,
+                           last_exact,
+                           frame);
+            const Tensor<1, 2> &normal   = frame.normal,
+                               &tangent_ = frame.tangent;
+            const Tensor<2, 2> &nn       = frame.nn;
+            const auto         &trace = frame.trace, &trace_dt = frame.trace_dt;
+            const Tensor<1, 2> &g = frame.g, &dg_dt = frame.dg_dt;
+            // The state of the boundary as of the step's start.
+            const std::vector<double> props =
+              piece.curve->state_at(piece.segment, values.parameter(q));
+            const ArrayView<const double> state(props.data(), props.size());
 
-              for (unsigned int r = 0; r < across.size(); ++r)
-                {
-                  const double   phi = delta * across.point(r)[0];
-                  const double   w   = ds * delta * across.weight(r);
-                  const double   D   = d_function(phi, delta);
-                  const double   dD  = d_function_derivative(phi, delta);
-                  const Point<2> x   = c + phi * normal;
-                  const Point<2> st  = grid.local_coordinates(x, piece.cell);
-                  // The band corrections of assemble() as full gradients
-                  // (its strains are their symmetric parts), and the
-                  // band's mismatch E = Delta(d) - Delta_g.
-                  Tensor<2, 2> f = unit_symmetric_tensor<2>(), E;
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      G[i]     = kernel.shape_gradient(i, st);
-                      Delta[i] = roller ? dD * (trace[i] * normal) * nn -
-                                            (1 - D) * (trace_dt[i] * normal) *
-                                              outer_product(normal, tangent_) :
-                                          dD * outer_product(trace[i], normal);
-                      T[i]     = G[i] + Delta[i];
-                      f += d[i] * G[i];
-                      E += d[i] * Delta[i];
-                    }
-                  if (imposes)
-                    E -= roller ? dD * outer_product(g, normal) -
-                                    (1 - D) * outer_product(dg_dt, tangent_) :
-                                  dD * outer_product(g, normal);
-                  // P(f + E) linearised about the grid's f: E is the
-                  // constraint's, of order (w(x_b) - g) / delta, and would
-                  // invert the band long before Newton has met the support
-                  // (doc/finite-strain.md, "Supports in finite strain").
-                  Tensor<2, 2> P;
-                  Tensor<4, 2> A;
-                  // An inverted point is left out; @p stress reports it
-                  // to the solver, which rejects the increment.
-                  if (!stress(state, f, P, A))
-                    continue;
-                  const Tensor<2, 2> AE = contract(A, E);
-                  for (unsigned int i = 0; i < n; ++i)
-                    cell_force[i] += w * (scalar_product(P, Delta[i]) +
-                                          scalar_product(AE, T[i]));
-                  if (tangent == nullptr)
-                    continue;
-                  // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
-                  // latter D_E A(f) : G_j (second derivatives commute), by
-                  // central differences along E. That part is of the order
-                  // of E, the support's mismatch over the band width: where
-                  // the mismatch is a sizeable part of the cell (the first
-                  // iterations of a step that imposes a large displacement:
-                  // |E| delta / h about 1 at the start of a 30 %
-                  // compression in one step), it made the first correction
-                  // some 25 times too long (8 m for an imposed 0.27 m),
-                  // inverting points, and the step was cut three times.
-                  // So it joins the tangent only once the mismatch is below
-                  // 1e-2 h, where it keeps Newton quadratic
-                  // (doc/finite-strain.md, "Supports in finite strain").
-                  Tensor<4, 2> dA_E;
-                  const double size = E.norm();
-                  if (size > 0 && size * relative_band_width <= 1e-2)
-                    {
-                      const double h = 1e-5 / size;
-                      Tensor<2, 2> P_other;
-                      Tensor<4, 2> A_plus, A_minus;
-                      if (stress(state, f + h * E, P_other, A_plus) &&
-                          stress(state, f - h * E, P_other, A_minus))
-                        dA_E = (A_plus - A_minus) / (2 * h);
-                    }
+            for (unsigned int r = 0; r < across.size(); ++r)
+              {
+                const double   phi = delta * across.point(r)[0];
+                const double   w   = ds * delta * across.weight(r);
+                const double   D   = d_function(phi, delta);
+                const double   dD  = d_function_derivative(phi, delta);
+                const Point<2> x   = c + phi * normal;
+                const Point<2> st  = grid.local_coordinates(x, piece.cell);
+                // The band corrections of assemble() as full gradients
+                // (its strains are their symmetric parts), and the
+                // band's mismatch E = Delta(d) - Delta_g.
+                Tensor<2, 2> f = unit_symmetric_tensor<2>(), E;
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    G[i]     = kernel.shape_gradient(i, st);
+                    Delta[i] = roller ? dD * (trace[i] * normal) * nn -
+                                          (1 - D) * (trace_dt[i] * normal) *
+                                            outer_product(normal, tangent_) :
+                                        dD * outer_product(trace[i], normal);
+                    T[i]     = G[i] + Delta[i];
+                    f += d[i] * G[i];
+                    E += d[i] * Delta[i];
+                  }
+                if (imposes)
+                  E -= roller ? dD * outer_product(g, normal) -
+                                  (1 - D) * outer_product(dg_dt, tangent_) :
+                                dD * outer_product(g, normal);
+                // P(f + E) linearised about the grid's f: E is the
+                // constraint's, of order (w(x_b) - g) / delta, and would
+                // invert the band long before Newton has met the support
+                // (doc/finite-strain.md, "Supports in finite strain").
+                Tensor<2, 2> P;
+                Tensor<4, 2> A;
+                // An inverted point is left out; @p stress reports it
+                // to the solver, which rejects the increment.
+                if (!stress(state, f, P, A))
+                  continue;
+                const Tensor<2, 2> AE = contract(A, E);
+                for (unsigned int i = 0; i < n; ++i)
+                  cell_force[i] += w * (scalar_product(P, Delta[i]) +
+                                        scalar_product(AE, T[i]));
+                if (tangent == nullptr)
+                  continue;
+                // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
+                // latter D_E A(f) : G_j (second derivatives commute), by
+                // central differences along E. That part is of the order
+                // of E, the support's mismatch over the band width: where
+                // the mismatch is a sizeable part of the cell (the first
+                // iterations of a step that imposes a large displacement:
+                // |E| delta / h about 1 at the start of a 30 %
+                // compression in one step), it made the first correction
+                // some 25 times too long (8 m for an imposed 0.27 m),
+                // inverting points, and the step was cut three times.
+                // So it joins the tangent only once the mismatch is below
+                // 1e-2 h, where it keeps Newton quadratic
+                // (doc/finite-strain.md, "Supports in finite strain").
+                Tensor<4, 2> dA_E;
+                const double size = E.norm();
+                if (size > 0 && size * relative_band_width <= 1e-2)
+                  {
+                    const double h = 1e-5 / size;
+                    Tensor<2, 2> P_other;
+                    Tensor<4, 2> A_plus, A_minus;
+                    if (stress(state, f + h * E, P_other, A_plus) &&
+                        stress(state, f - h * E, P_other, A_minus))
+                      dA_E = (A_plus - A_minus) / (2 * h);
+                  }
+                for (unsigned int j = 0; j < n; ++j)
+                  {
+                    AT[j] = contract(A, Delta[j]) + contract(dA_E, G[j]);
+                    AG[j] = contract(A, G[j]);
+                  }
+                for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
-                    {
-                      AT[j] = contract(A, Delta[j]) + contract(dA_E, G[j]);
-                      AG[j] = contract(A, G[j]);
-                    }
-                  for (unsigned int i = 0; i < n; ++i)
-                    for (unsigned int j = 0; j < n; ++j)
-                      cell_matrix(i, j) +=
-                        w * (scalar_product(AG[j], Delta[i]) +
-                             scalar_product(AT[j], T[i]));
-                }
-            }
-          if (tangent != nullptr)
-            constraints.distribute_local_to_global(
-              cell_matrix, cell_force, dof_indices, *tangent, internal_force);
-          else
-            constraints.distribute_local_to_global(cell_force,
-                                                   dof_indices,
-                                                   internal_force);
-        }
+                    cell_matrix(i, j) += w * (scalar_product(AG[j], Delta[i]) +
+                                              scalar_product(AT[j], T[i]));
+              }
+          }
+        if (tangent != nullptr)
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_force, dof_indices, *tangent, internal_force);
+        else
+          constraints.distribute_local_to_global(cell_force,
+                                                 dof_indices,
+                                                 internal_force);
+      }
+  }
+
+
+
+  void
+  ImplicitBoundary::boundary_frame(const CurvePieceValues &values,
+                                   const unsigned int      q,
+                                   const Q1CellKernel     &kernel,
+                                   const CurveCondition   *imposed,
+                                   const double            factor,
+                                   const ExactSolution    *exact,
+                                   BoundaryFrame          &frame)
+  {
+    const double        u       = values.parameter(q);
+    const Point<2>     &c       = values.position(q);
+    const Tensor<1, 2> &outward = values.normal(q);
+    frame.normal                = -outward; // inward
+    frame.tangent        = Tensor<1, 2>({-frame.normal[1], frame.normal[0]});
+    frame.nn             = outer_product(frame.normal, frame.normal);
+    const Point<2> &st_c = values.local_coordinates(q);
+    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+      {
+        frame.trace[i]    = kernel.shape_value(i, st_c);
+        frame.trace_dt[i] = kernel.shape_gradient(i, st_c) * frame.tangent;
+      }
+    frame.g     = Tensor<1, 2>();
+    frame.dg_dt = Tensor<1, 2>();
+    if (imposed == nullptr)
+      return;
+    // dg/dt by central differences along the curve.
+    const LocallyOwnedCurvePiece &piece  = values.get_piece();
+    const BSplineCurve           &spline = *piece.curve->spline;
+    const double                  tau    = 1e-6 * (piece.u_end - piece.u_begin);
+    const Point<2> a = spline.value(u - tau), b = spline.value(u + tau);
+    frame.g     = factor * prescribed_value(*imposed, exact, c, outward);
+    frame.dg_dt = factor *
+                  (prescribed_value(*imposed, exact, b, outward) -
+                   prescribed_value(*imposed, exact, a, outward)) /
+                  ((b - a) * frame.tangent);
   }
 
 
@@ -662,42 +675,35 @@ namespace bsmpm
 
   double
   ImplicitBoundary::fit_prescribed_displacement(
-    const BoundaryCurves                       &curves,
-    const BackgroundGrid                       &grid,
-    const Q1CellKernel                         &kernel,
-    const ExactSolution                        *exact,
+    const Context                              &context,
     const double                                factor,
     TrilinosWrappers::SparseMatrix             &mass,
     LinearAlgebra::distributed::Vector<double> &prescribed) const
   {
-    constexpr unsigned int n    = Q1CellKernel::dofs_per_cell;
-    const MPI_Comm         comm = grid.mpi_communicator();
+    const BoundaryCurves  &curves = context.curves;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    const ExactSolution   *exact  = context.exact_solution;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
+    const MPI_Comm         comm   = grid.mpi_communicator();
     const QGauss<1>        gauss(std::max(points_along, 4u));
 
     // Which DoFs the boundary meets: all others are zero.
     LinearAlgebra::distributed::Vector<double> touched(
       grid.locally_owned_dofs(), grid.locally_relevant_dofs(), comm);
+    CurvePieceValues values(grid, gauss);
+    const auto       pieces = values.pieces(
+      curves, [](const BoundaryCurve &curve, const CurveCondition *condition) {
+        return is_ibm_support(curve, condition) &&
+               condition->kind == CurveCondition::Kind::displacement;
+      });
     std::vector<types::global_dof_index> dof_indices(n);
-    const auto                           for_each_piece = [&](const auto &f) {
-      for (const auto &curve : curves.get_curves())
-        for (const auto &piece : curve.pieces)
-          {
-            const CurveCondition *condition =
-              curve.condition_of_segment(piece.segment);
-            if (!is_ibm_support(curve, condition) ||
-                condition->kind != CurveCondition::Kind::displacement)
-              continue;
-            const auto cell = grid.locally_owned_cell(piece.cell);
-            if (cell != grid.dof_handler().end())
-              f(curve, piece, *condition, cell);
-          }
-    };
-    for_each_piece(
-      [&](const auto &, const auto &, const auto &, const auto &cell) {
-        cell->get_dof_indices(dof_indices);
+    for (const auto &piece : pieces)
+      {
+        piece.owned_cell->get_dof_indices(dof_indices);
         for (const auto i : dof_indices)
           touched(i) = 1;
-      });
+      }
     touched.compress(VectorOperation::max);
     touched.update_ghost_values();
 
@@ -712,37 +718,31 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector rhs(grid.locally_owned_dofs(), comm);
     FullMatrix<double>            cell_matrix(n, n);
     Vector<double>                cell_rhs(n);
-    for_each_piece([&](const BoundaryCurve  &curve,
-                       const CurvePiece     &piece,
-                       const CurveCondition &condition,
-                       const auto           &cell) {
-      cell_matrix     = 0;
-      cell_rhs        = 0;
-      const double du = piece.u_end - piece.u_begin;
-      for (unsigned int q = 0; q < gauss.size(); ++q)
-        {
-          const double   u = piece.u_begin + gauss.point(q)[0] * du;
-          const Point<2> x = curve.spline->value(u);
-          const double   ds =
-            curve.spline->derivative(u).norm() * du * gauss.weight(q);
-          const Point<2>     st = grid.local_coordinates(x, piece.cell);
-          const Tensor<1, 2> ua =
-            factor * prescribed_value(condition,
-                                      exact,
-                                      x,
-                                      curve.spline->outward_normal(u));
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              const Tensor<1, 2> Ni = kernel.shape_value(i, st);
-              cell_rhs[i] += Ni * ua * ds;
-              for (unsigned int j = 0; j < n; ++j)
-                cell_matrix(i, j) += Ni * kernel.shape_value(j, st) * ds;
-            }
-        }
-      cell->get_dof_indices(dof_indices);
-      constraints.distribute_local_to_global(
-        cell_matrix, cell_rhs, dof_indices, mass, rhs);
-    });
+    for (const auto &piece : pieces)
+      {
+        values.reinit(piece);
+        cell_matrix = 0;
+        cell_rhs    = 0;
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const double       ds = values.JxW(q);
+            const Point<2>    &st = values.local_coordinates(q);
+            const Tensor<1, 2> ua =
+              factor * prescribed_value(*piece.condition,
+                                        exact,
+                                        values.position(q),
+                                        values.normal(q));
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const Tensor<1, 2> Ni = kernel.shape_value(i, st);
+                cell_rhs[i] += Ni * ua * ds;
+                for (unsigned int j = 0; j < n; ++j)
+                  cell_matrix(i, j) += Ni * kernel.shape_value(j, st) * ds;
+              }
+          }
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_rhs, values.dof_indices(), mass, rhs);
+      }
     // Rows of DoFs the boundary does not meet: identity.
     for (const auto i : grid.locally_owned_dofs())
       if (touched(i) == 0.)
@@ -799,30 +799,24 @@ namespace bsmpm
     // Root mean square of the fit along the boundary.
     double                    error2 = 0, length = 0;
     Q1CellKernel::LocalVector da;
-    for_each_piece([&](const BoundaryCurve  &curve,
-                       const CurvePiece     &piece,
-                       const CurveCondition &condition,
-                       const auto           &cell) {
-      cell->get_dof_indices(dof_indices);
-      for (unsigned int i = 0; i < n; ++i)
-        da[i] = prescribed(dof_indices[i]);
-      const double du = piece.u_end - piece.u_begin;
-      for (unsigned int q = 0; q < gauss.size(); ++q)
-        {
-          const double   u = piece.u_begin + gauss.point(q)[0] * du;
-          const Point<2> x = curve.spline->value(u);
-          const double   ds =
-            curve.spline->derivative(u).norm() * du * gauss.weight(q);
-          const Tensor<1, 2> misfit =
-            kernel.displacement(da, grid.local_coordinates(x, piece.cell)) -
-            factor * prescribed_value(condition,
-                                      exact,
-                                      x,
-                                      curve.spline->outward_normal(u));
-          error2 += misfit.norm_square() * ds;
-          length += ds;
-        }
-    });
+    for (const auto &piece : pieces)
+      {
+        values.reinit(piece);
+        for (unsigned int i = 0; i < n; ++i)
+          da[i] = prescribed(values.dof_indices()[i]);
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const double       ds = values.JxW(q);
+            const Tensor<1, 2> misfit =
+              kernel.displacement(da, values.local_coordinates(q)) -
+              factor * prescribed_value(*piece.condition,
+                                        exact,
+                                        values.position(q),
+                                        values.normal(q));
+            error2 += misfit.norm_square() * ds;
+            length += ds;
+          }
+      }
     error2 = Utilities::MPI::sum(error2, comm);
     length = Utilities::MPI::sum(length, comm);
     return length > 0 ? std::sqrt(error2 / length) : 0.;

@@ -2,6 +2,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/boundary/curve_piece_values.h>
 #include <bsmpm/boundary/neumann_loads.h>
 
 namespace bsmpm
@@ -48,88 +49,79 @@ namespace bsmpm
     Vector<double>     cell_rhs(Q1CellKernel::dofs_per_cell);
     FullMatrix<double> cell_matrix(Q1CellKernel::dofs_per_cell,
                                    Q1CellKernel::dofs_per_cell);
-    std::vector<types::global_dof_index> dof_indices(
-      Q1CellKernel::dofs_per_cell);
+    CurvePieceValues   values(grid, gauss);
 
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (condition == nullptr || !condition->is_load())
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell == grid.dof_handler().end())
-            continue;
+    for (const auto &piece : values.pieces(
+           curves, [](const BoundaryCurve &, const CurveCondition *condition) {
+             return condition != nullptr && condition->is_load();
+           }))
+      {
+        values.reinit(piece);
+        const CurveCondition *condition = piece.condition;
+        AssertThrow(condition->kind != CurveCondition::Kind::exact_traction ||
+                      exact != nullptr,
+                    ExcMessage("Boundary curves/" + piece.curve->name +
+                               ": 'exact traction' needs an exact solution "
+                               "in the 'Exact solution' section."));
+        cell_rhs    = 0;
+        cell_matrix = 0;
+        const bool follows =
+          follower && condition->kind == CurveCondition::Kind::pressure;
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const Point<2>     &x  = values.position(q);
+            const double        dl = values.JxW(q);
+            const Tensor<1, 2> &n  = values.normal(q);
 
-          AssertThrow(condition->kind != CurveCondition::Kind::exact_traction ||
-                        exact != nullptr,
-                      ExcMessage("Boundary curves/" + curve.name +
-                                 ": 'exact traction' needs an exact solution "
-                                 "in the 'Exact solution' section."));
-          const BSplineCurve &spline = *curve.spline;
-          cell_rhs                   = 0;
-          cell_matrix                = 0;
-          const bool follows =
-            follower && condition->kind == CurveCondition::Kind::pressure;
-          for (unsigned int q = 0; q < gauss.size(); ++q)
-            {
-              const double u = piece.u_begin + gauss.point(q)[0] *
-                                                 (piece.u_end - piece.u_begin);
-              const Point<2> x  = spline.value(u);
-              const double   dl = spline.derivative(u).norm() *
-                                (piece.u_end - piece.u_begin) * gauss.weight(q);
-              const Tensor<1, 2> n = spline.outward_normal(u);
+            Tensor<1, 2> t;
+            switch (condition->kind)
+              {
+                case CurveCondition::Kind::pressure:
+                  t = -condition->pressure * n;
+                  break;
+                case CurveCondition::Kind::traction:
+                  t = condition->function_value(x, problem);
+                  break;
+                case CurveCondition::Kind::exact_traction:
+                  t = exact->traction(x, n);
+                  break;
+                default:
+                  break;
+              }
+            t *= load_factor;
+            points.push_back({x, t, dl});
 
-              Tensor<1, 2> t;
-              switch (condition->kind)
-                {
-                  case CurveCondition::Kind::pressure:
-                    t = -condition->pressure * n;
-                    break;
-                  case CurveCondition::Kind::traction:
-                    t = condition->function_value(x, problem);
-                    break;
-                  case CurveCondition::Kind::exact_traction:
-                    t = exact->traction(x, n);
-                    break;
-                  default:
-                    break;
-                }
-              t *= load_factor;
-              points.push_back({x, t, dl});
-
-              const Point<2> st = grid.local_coordinates(x, piece.cell);
-              for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
-                cell_rhs[i] += kernel.shape_value(i, st) * t * dl;
-              if (follows)
-                {
-                  // R rotates the unit tangent onto the outward normal.
-                  const Tensor<1, 2> tangent =
-                    spline.derivative(u) / spline.derivative(u).norm();
-                  const double sign =
-                    n[0] * tangent[1] - n[1] * tangent[0] > 0 ? 1. : -1.;
-                  const double p = load_factor * condition->pressure * dl;
-                  for (unsigned int j = 0; j < Q1CellKernel::dofs_per_cell; ++j)
-                    {
-                      // (grad N_j) t, then R of it: R (a, b) = sign (b, -a).
-                      const Tensor<1, 2> Gt =
-                        kernel.shape_gradient(j, st) * tangent;
-                      const Tensor<1, 2> RGt({sign * Gt[1], -sign * Gt[0]});
-                      for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell;
-                           ++i)
-                        cell_matrix(i, j) +=
-                          p * (kernel.shape_value(i, st) * RGt);
-                    }
-                }
-            }
-          cell->get_dof_indices(dof_indices);
-          if (follows)
-            constraints.distribute_local_to_global(
-              cell_matrix, cell_rhs, dof_indices, *follower, rhs);
-          else
-            constraints.distribute_local_to_global(cell_rhs, dof_indices, rhs);
-        }
+            const Point<2> &st = values.local_coordinates(q);
+            for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+              cell_rhs[i] += kernel.shape_value(i, st) * t * dl;
+            if (follows)
+              {
+                // R rotates the unit tangent onto the outward normal.
+                const Tensor<1, 2> &tangent = values.tangent(q);
+                const double        sign =
+                  n[0] * tangent[1] - n[1] * tangent[0] > 0 ? 1. : -1.;
+                const double p = load_factor * condition->pressure * dl;
+                for (unsigned int j = 0; j < Q1CellKernel::dofs_per_cell; ++j)
+                  {
+                    // (grad N_j) t, then R of it: R (a, b) = sign (b, -a).
+                    const Tensor<1, 2> Gt =
+                      kernel.shape_gradient(j, st) * tangent;
+                    const Tensor<1, 2> RGt({sign * Gt[1], -sign * Gt[0]});
+                    for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell;
+                         ++i)
+                      cell_matrix(i, j) +=
+                        p * (kernel.shape_value(i, st) * RGt);
+                  }
+              }
+          }
+        if (follows)
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_rhs, values.dof_indices(), *follower, rhs);
+        else
+          constraints.distribute_local_to_global(cell_rhs,
+                                                 values.dof_indices(),
+                                                 rhs);
+      }
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 

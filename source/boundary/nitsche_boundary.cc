@@ -1,6 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/boundary/curve_piece_values.h>
 #include <bsmpm/boundary/nitsche_boundary.h>
 
 #include <algorithm>
@@ -10,14 +11,6 @@ namespace bsmpm
 {
   namespace
   {
-    bool
-    is_nitsche_support(const BoundaryCurve  &curve,
-                       const CurveCondition *condition)
-    {
-      return condition != nullptr && condition->is_support() &&
-             curve.dirichlet_method == BoundaryCurve::DirichletMethod::nitsche;
-    }
-
     /** Traction sigma n of a Voigt stress. */
     Tensor<1, 2>
     traction(const Voigt &sigma, const Tensor<1, 2> &n)
@@ -26,6 +19,16 @@ namespace bsmpm
         {sigma[0] * n[0] + sigma[2] * n[1], sigma[2] * n[0] + sigma[1] * n[1]});
     }
   } // namespace
+
+
+
+  BSMPM_REGISTER_SUPPORT_METHOD(NitscheBoundary, "nitsche")
+
+
+
+  NitscheBoundary::NitscheBoundary()
+    : SupportMethod("nitsche", BoundaryCurve::DirichletMethod::nitsche)
+  {}
 
 
 
@@ -66,19 +69,21 @@ namespace bsmpm
 
 
   void
-  NitscheBoundary::assemble(const BoundaryCurves            &curves,
-                            const BackgroundGrid            &grid,
-                            const Q1CellKernel              &kernel,
-                            const LinearElasticMaterial     &material,
-                            const ExactSolution             *exact,
-                            const double                     increment_factor,
-                            const AffineConstraints<double> &constraints,
-                            TrilinosWrappers::SparseMatrix  &matrix,
-                            TrilinosWrappers::MPI::Vector   &rhs,
-                            const BoundaryCurve             *only,
-                            const std::vector<CellMoments>  *moments,
-                            const bool finite_strain) const
+  NitscheBoundary::assemble(
+    const Context &context,
+    const double   increment_factor,
+    const LinearAlgebra::distributed::Vector<double> * /*prescribed*/,
+    const std::vector<CellMoments>  *moments,
+    const AffineConstraints<double> &constraints,
+    TrilinosWrappers::SparseMatrix  &matrix,
+    TrilinosWrappers::MPI::Vector   &rhs,
+    const BoundaryCurve             *only)
   {
+    const BoundaryCurves  &curves        = context.curves;
+    const BackgroundGrid  &grid          = context.grid;
+    const Q1CellKernel    &kernel        = context.kernel;
+    const ExactSolution   *exact         = context.exact_solution;
+    const bool             finite_strain = context.finite_strain;
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
@@ -88,100 +93,89 @@ namespace bsmpm
     // penalty must outgrow it to keep the form coercive: scale it by
     // max(E, kappa) (doc/b-bar.md).
     const double beta =
-      penalty * material.penalty_modulus() / grid.min_cell_size();
+      penalty * context.material.penalty_modulus() / grid.min_cell_size();
 
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_rhs(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    std::array<Tensor<1, 2>, n>          value, stress_n;
+    FullMatrix<double>          cell_matrix(n, n);
+    Vector<double>              cell_rhs(n);
+    std::array<Tensor<1, 2>, n> value, stress_n;
+    CurvePieceValues            values(grid, gauss);
 
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (!is_nitsche_support(curve, condition) ||
-              (only != nullptr && &curve != only))
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell == grid.dof_handler().end())
-            continue;
+    for (const auto &piece : supported_pieces(values, curves, only))
+      {
+        values.reinit(piece);
+        const CurveCondition *condition = piece.condition;
+        const auto           &cell      = piece.owned_cell;
 
-          // A roller and a prescribed normal displacement hold the normal
-          // component only.
-          const bool          roller = condition->holds_normal_component_only();
-          const BSplineCurve &spline = *curve.spline;
-          const double        du     = piece.u_end - piece.u_begin;
-          // B-bar: the volumetric strain at the centroid of the cell's
-          // material (Q1CellKernel::stress_column()); without moments the
-          // point's own (the standard stress).
-          const Point<2> centroid =
-            moments != nullptr ?
-              Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
-              Point<2>();
-          cell_matrix = 0;
-          cell_rhs    = 0;
+        // A roller and a prescribed normal displacement hold the normal
+        // component only.
+        const bool roller = condition->holds_normal_component_only();
+        // B-bar: the volumetric strain at the centroid of the cell's
+        // material (Q1CellKernel::stress_column()); without moments the
+        // point's own (the standard stress).
+        const Point<2> centroid =
+          moments != nullptr ?
+            Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
+            Point<2>();
+        cell_matrix = 0;
+        cell_rhs    = 0;
 
-          for (unsigned int q = 0; q < gauss.size(); ++q)
-            {
-              const double       u  = piece.u_begin + gauss.point(q)[0] * du;
-              const Point<2>     x  = spline.value(u);
-              const Tensor<1, 2> nv = spline.outward_normal(u);
-              const double       ds =
-                spline.derivative(u).norm() * du * gauss.weight(q);
-              const Point<2> st = grid.local_coordinates(x, piece.cell);
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const double        u  = values.parameter(q);
+            const Point<2>     &x  = values.position(q);
+            const Tensor<1, 2> &nv = values.normal(q);
+            const double        ds = values.JxW(q);
+            const Point<2>     &st = values.local_coordinates(q);
 
-              // For a roller, all products are taken along n only.
-              const auto project = [&](const Tensor<1, 2> &v) {
-                return roller ? Tensor<1, 2>((v * nv) * nv) : v;
-              };
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  value[i] = kernel.shape_value(i, st);
-                  stress_n[i] =
-                    traction(kernel.stress_column(
-                               i, st, moments != nullptr ? centroid : st),
-                             nv);
-                }
-              // Finite strain: the consistency term and the reaction come
-              // per Newton iteration (add_finite_strain_terms()).
-              const double consistency = finite_strain ? 0. : 1.;
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  cell_matrix(i, j) +=
-                    ds * (-consistency * project(stress_n[j]) * value[i] -
-                          project(stress_n[i]) * value[j] +
-                          beta * project(value[i]) * value[j]);
+            // For a roller, all products are taken along n only.
+            const auto project = [&](const Tensor<1, 2> &v) {
+              return roller ? Tensor<1, 2>((v * nv) * nv) : v;
+            };
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                value[i] = kernel.shape_value(i, st);
+                stress_n[i] =
+                  traction(kernel.stress_column(
+                             i, st, moments != nullptr ? centroid : st),
+                           nv);
+              }
+            // Finite strain: the consistency term and the reaction come
+            // per Newton iteration (add_finite_strain_terms()).
+            const double consistency = finite_strain ? 0. : 1.;
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                cell_matrix(i, j) +=
+                  ds * (-consistency * project(stress_n[j]) * value[i] -
+                        project(stress_n[i]) * value[j] +
+                        beta * project(value[i]) * value[j]);
 
-              // Reaction of the previous steps.
-              const Tensor<1, 2> reaction =
-                consistency *
-                project(traction(curve.stress_at(piece.segment, u), nv));
+            // Reaction of the previous steps.
+            const Tensor<1, 2> reaction =
+              consistency *
+              project(traction(piece.curve->stress_at(piece.segment, u), nv));
 
-              // The prescribed increment; for a normal displacement
-              // g = g_n n, so that the projected terms give
-              // (u . n - g_n) (v . n).
-              Tensor<1, 2> g;
-              if (condition->kind == CurveCondition::Kind::displacement)
-                g =
-                  increment_factor * (condition->function ?
+            // The prescribed increment; for a normal displacement
+            // g = g_n n, so that the projected terms give
+            // (u . n - g_n) (v . n).
+            Tensor<1, 2> g;
+            if (condition->kind == CurveCondition::Kind::displacement)
+              g = increment_factor * (condition->function ?
                                         condition->function_value(x, problem) :
                                         exact->displacement(x));
-              else if (condition->kind ==
-                       CurveCondition::Kind::normal_displacement)
-                g = increment_factor *
-                    (condition->function ?
-                       condition->scalar_function_value(x, problem) :
-                       exact->displacement(x) * nv) *
-                    nv;
-              for (unsigned int i = 0; i < n; ++i)
-                cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
-                                     beta * value[i] * g);
-            }
-          cell->get_dof_indices(dof_indices);
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs, dof_indices, matrix, rhs);
-        }
+            else if (condition->kind ==
+                     CurveCondition::Kind::normal_displacement)
+              g = increment_factor *
+                  (condition->function ?
+                     condition->scalar_function_value(x, problem) :
+                     exact->displacement(x) * nv) *
+                  nv;
+            for (unsigned int i = 0; i < n; ++i)
+              cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
+                                   beta * value[i] * g);
+          }
+        constraints.distribute_local_to_global(
+          cell_matrix, cell_rhs, values.dof_indices(), matrix, rhs);
+      }
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 
@@ -189,9 +183,7 @@ namespace bsmpm
 
   void
   NitscheBoundary::add_finite_strain_terms(
-    const BoundaryCurves                             &curves,
-    const BackgroundGrid                             &grid,
-    const Q1CellKernel                               &kernel,
+    const Context                                    &context,
     const LinearAlgebra::distributed::Vector<double> &increment,
     const SupportStress                              &stress,
     const AffineConstraints<double>                  &constraints,
@@ -199,83 +191,72 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector                    &internal_force,
     const BoundaryCurve                              *only) const
   {
-    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    const BoundaryCurves  &curves = context.curves;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
 
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_force(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    Q1CellKernel::LocalVector            d;
-    std::array<Tensor<1, 2>, n>          value;
-    std::array<Tensor<2, 2>, n>          G;
+    FullMatrix<double>          cell_matrix(n, n);
+    Vector<double>              cell_force(n);
+    Q1CellKernel::LocalVector   d;
+    std::array<Tensor<1, 2>, n> value;
+    std::array<Tensor<2, 2>, n> G;
+    CurvePieceValues            values(grid, gauss);
 
-    for (const auto &curve : curves.get_curves())
-      for (const auto &piece : curve.pieces)
-        {
-          const CurveCondition *condition =
-            curve.condition_of_segment(piece.segment);
-          if (!is_nitsche_support(curve, condition) ||
-              (only != nullptr && &curve != only))
-            continue;
-          const auto cell = grid.locally_owned_cell(piece.cell);
-          if (cell == grid.dof_handler().end())
-            continue;
-          cell->get_dof_indices(dof_indices);
-          for (unsigned int i = 0; i < n; ++i)
-            d[i] = increment(dof_indices[i]);
-          const bool          roller = condition->holds_normal_component_only();
-          const BSplineCurve &spline = *curve.spline;
-          const double        du     = piece.u_end - piece.u_begin;
-          cell_matrix                = 0;
-          cell_force                 = 0;
+    for (const auto &piece : supported_pieces(values, curves, only))
+      {
+        values.reinit(piece);
+        const auto &dof_indices = values.dof_indices();
+        for (unsigned int i = 0; i < n; ++i)
+          d[i] = increment(dof_indices[i]);
+        const bool roller = piece.condition->holds_normal_component_only();
+        cell_matrix       = 0;
+        cell_force        = 0;
 
-          for (unsigned int q = 0; q < gauss.size(); ++q)
-            {
-              const double       u  = piece.u_begin + gauss.point(q)[0] * du;
-              const Point<2>     x  = spline.value(u);
-              const Tensor<1, 2> nv = spline.outward_normal(u);
-              const double       ds =
-                spline.derivative(u).norm() * du * gauss.weight(q);
-              const Point<2> st      = grid.local_coordinates(x, piece.cell);
-              const auto     project = [&](const Tensor<1, 2> &v) {
-                return roller ? Tensor<1, 2>((v * nv) * nv) : v;
-              };
-              Tensor<2, 2> f = unit_symmetric_tensor<2>();
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  value[i] = kernel.shape_value(i, st);
-                  G[i]     = kernel.shape_gradient(i, st);
-                  f += d[i] * G[i];
-                }
-              const std::vector<double> props =
-                curve.state_at(piece.segment, u);
-              Tensor<2, 2> P;
-              Tensor<4, 2> A;
-              if (!stress(ArrayView<const double>(props.data(), props.size()),
-                          f,
-                          P,
-                          A))
-                continue; // inverted: reported by @p stress to the solver
-              // The nominal traction P n on the curve of the step's start.
-              const Tensor<1, 2> traction_n = project(P * nv);
-              for (unsigned int i = 0; i < n; ++i)
-                cell_force[i] -= ds * (value[i] * traction_n);
-              if (tangent == nullptr)
-                continue;
-              for (unsigned int j = 0; j < n; ++j)
-                {
-                  const Tensor<1, 2> dt = project(contract(A, G[j]) * nv);
-                  for (unsigned int i = 0; i < n; ++i)
-                    cell_matrix(i, j) -= ds * (value[i] * dt);
-                }
-            }
-          if (tangent != nullptr)
-            constraints.distribute_local_to_global(
-              cell_matrix, cell_force, dof_indices, *tangent, internal_force);
-          else
-            constraints.distribute_local_to_global(cell_force,
-                                                   dof_indices,
-                                                   internal_force);
-        }
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const double        u       = values.parameter(q);
+            const Tensor<1, 2> &nv      = values.normal(q);
+            const double        ds      = values.JxW(q);
+            const Point<2>     &st      = values.local_coordinates(q);
+            const auto          project = [&](const Tensor<1, 2> &v) {
+              return roller ? Tensor<1, 2>((v * nv) * nv) : v;
+            };
+            Tensor<2, 2> f = unit_symmetric_tensor<2>();
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                value[i] = kernel.shape_value(i, st);
+                G[i]     = kernel.shape_gradient(i, st);
+                f += d[i] * G[i];
+              }
+            const std::vector<double> props =
+              piece.curve->state_at(piece.segment, u);
+            Tensor<2, 2> P;
+            Tensor<4, 2> A;
+            if (!stress(
+                  ArrayView<const double>(props.data(), props.size()), f, P, A))
+              continue; // inverted: reported by @p stress to the solver
+            // The nominal traction P n on the curve of the step's start.
+            const Tensor<1, 2> traction_n = project(P * nv);
+            for (unsigned int i = 0; i < n; ++i)
+              cell_force[i] -= ds * (value[i] * traction_n);
+            if (tangent == nullptr)
+              continue;
+            for (unsigned int j = 0; j < n; ++j)
+              {
+                const Tensor<1, 2> dt = project(contract(A, G[j]) * nv);
+                for (unsigned int i = 0; i < n; ++i)
+                  cell_matrix(i, j) -= ds * (value[i] * dt);
+              }
+          }
+        if (tangent != nullptr)
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_force, dof_indices, *tangent, internal_force);
+        else
+          constraints.distribute_local_to_global(cell_force,
+                                                 dof_indices,
+                                                 internal_force);
+      }
   }
 } // namespace bsmpm

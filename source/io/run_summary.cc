@@ -2,6 +2,7 @@
 
 #include <bsmpm/io/run_summary.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -205,6 +206,32 @@ namespace bsmpm
       }
     catch (...)
       {}
+  }
+
+
+
+  void
+  RunSummary::report_stalled_increments(const dealii::ConditionalOStream &pcout)
+  {
+    // Said at the end as well as in the table: the answer of such a run
+    // holds to that residual, not to the Newton tolerance.
+    unsigned int n       = 0;
+    double       largest = 0;
+    for (const auto &s : steps)
+      {
+        n += s.stalled_increments;
+        largest = std::max(largest, s.stalled_residual);
+      }
+    if (n == 0)
+      return;
+    quantities["stalled_increments"]   = n;
+    quantities["stalled_residual_max"] = largest;
+    pcout << "\nNote: " << n
+          << " load increment(s) did not converge in their last cut and took "
+             "their best iterate (Nonlinear solver/Stall tolerance), the "
+             "largest residual "
+          << std::setprecision(2) << largest << std::setprecision(6)
+          << " of the largest internal force: see the step table.\n";
   }
 
 

@@ -11,18 +11,18 @@
 
 namespace bsmpm
 {
-  StepOutput::StepOutput(OutputWriter           &output,
-                         const BackgroundGrid   &grid,
-                         const MaterialPoints   &points,
-                         const BoundaryCurves   &boundary_curves,
-                         const NeumannLoads     &neumann_loads,
-                         const ImplicitBoundary &implicit_boundary)
+  StepOutput::StepOutput(OutputWriter         &output,
+                         const BackgroundGrid &grid,
+                         const MaterialPoints &points,
+                         const BoundaryCurves &boundary_curves,
+                         const NeumannLoads   &neumann_loads,
+                         const SupportMethods &supports)
     : output(output)
     , grid(grid)
     , points(points)
     , boundary_curves(boundary_curves)
     , neumann_loads(neumann_loads)
-    , implicit_boundary(implicit_boundary)
+    , supports(supports)
   {}
 
 
@@ -119,10 +119,10 @@ namespace bsmpm
                          Tensor<1, 2>({part[i + 2], part[i + 3]}),
                          part[i + 4]});
     local.clear();
-    for (const auto &b : implicit_boundary.band_points())
+    for (const auto &b : supports.band_points())
       local.insert(local.end(),
                    {b.position[0], b.position[1], b.d_function, b.weight});
-    std::vector<ImplicitBoundary::BandPoint> band;
+    std::vector<SupportMethod::BandPoint> band;
     for (const auto &part : Utilities::MPI::gather(communicator, local, 0))
       for (std::size_t i = 0; i + 3 < part.size(); i += 4)
         band.push_back(

@@ -11,15 +11,15 @@
 #include <bsmpm/assembly/system_assembly.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
-#include <bsmpm/boundary/implicit_boundary.h>
 #include <bsmpm/boundary/neumann_loads.h>
-#include <bsmpm/boundary/nitsche_boundary.h>
+#include <bsmpm/boundary/support_methods.h>
 #include <bsmpm/boundary/support_reaction.h>
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/geometry/body_region.h>
 #include <bsmpm/io/checkpoint.h>
 #include <bsmpm/io/output_writer.h>
+#include <bsmpm/io/run_checkpoint.h>
 #include <bsmpm/io/run_summary.h>
 #include <bsmpm/io/step_output.h>
 #include <bsmpm/linear_algebra/linear_solver.h>
@@ -28,6 +28,7 @@
 #include <bsmpm/nonlinear/collapse_detector.h>
 #include <bsmpm/nonlinear/displacement_control.h>
 #include <bsmpm/nonlinear/increment_solver.h>
+#include <bsmpm/nonlinear/load_stepper.h>
 #include <bsmpm/nonlinear/newton_solver.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
@@ -46,14 +47,17 @@ namespace bsmpm
   using namespace dealii;
 
   /**
-   * One analysis: an implicit, quasi-static, small-strain MPM run in load
-   * steps (paper Sec. 2, method-notes Sec. 1). Per load step:
+   * One analysis: an implicit, quasi-static MPM run in load steps (paper
+   * Sec. 2, method-notes Sec. 1). The Scene makes the parts of the run from
+   * the parameters and keeps the order of a load step:
    *
-   *   sort points into cells -> constrain the DoFs of empty cells ->
-   *   assemble K and r = f_ext(lambda) - f_int(sigma_n) from the material
-   *   points and the tractions on the boundary curves -> solve K du = r ->
-   *   move the points (strain, stress, displacement, position) -> rebuild
-   *   the boundary curves through their moved points -> errors and output.
+   *   per increment (LoadStepper: increments, cuts, the solve):
+   *     sort the points into cells, their cell moments (cut-cell
+   *     quadrature) -> system and solve -> move the points (strain,
+   *     stress, displacement, position) -> rebuild the boundary curves
+   *     through their moved points;
+   *   then the step's quantities, its line of the table, output and
+   *   checkpoint; at the end errors and the summary.
    *
    * The grid is reset after every step: only the points move.
    */
@@ -113,41 +117,14 @@ namespace bsmpm
   private:
     void
     setup();
+    /** The system, its solvers and the load steps' driver, once the grid,
+     * points and curves exist. */
     void
-    fit_prescribed_displacement(const double increment_factor);
-    /** Material moments of every cell, plain or by the cut-cell quadrature. */
-    void
+    make_solvers();
+    /** Material moments of every cell, plain or by the cut-cell quadrature,
+     * of the points sorted into cells if they moved. */
+    const std::vector<CellMoments> &
     compute_cell_moments();
-    /**
-     * Takes the load from factor @p from to @p to: one increment, or more
-     * where a nonlinear material's Newton iterations fail and the
-     * increment is halved. Fills the solver figures of @p record and its
-     * load factor, which stays below @p to where the collapse detector
-     * stops the step.
-     */
-    void
-    advance(const unsigned int step,
-            const double       from,
-            const double       to,
-            RunSummary::Step  &record);
-    /**
-     * Load step @p step under displacement control: the control
-     * displacement grows by its increment (halved where Newton fails), the
-     * load factor follows (DisplacementControl). Fills @p record with the
-     * load factor reached.
-     */
-    void
-    advance_under_displacement_control(const unsigned int step,
-                                       RunSummary::Step  &record);
-    /** Newton iterations of a nonlinear material for the assembled load
-     * increment @p delta from @p lambda, cut @p cuts times so far; commits
-     * the points' state if they converge. Returns whether they did. */
-    bool
-    solve_nonlinear(const unsigned int step,
-                    const double       lambda,
-                    const double       delta,
-                    const unsigned int cuts,
-                    RunSummary::Step  &record);
     /** Moves the points by the converged increment of load increment
      * @p delta of load step @p step. */
     void
@@ -160,11 +137,6 @@ namespace bsmpm
      * points after a load step, into the run's quantities. */
     void
     record_quantities(const RunSummary::Step &record);
-    /** Increments accepted at their best iterate (Nonlinear solver/Stall
-     * tolerance): how many and the largest residual, said at the end of
-     * the run and in its quantities. */
-    void
-    report_stalled_increments();
     void
     write_output(const unsigned int step, const double load_factor);
     void
@@ -180,14 +152,9 @@ namespace bsmpm
     std::string  scene_name;
     unsigned int n_load_steps = 1;
     /** The constitutive model's strength is divided by this. */
-    double              strength_factor = 1;
-    CollapseDetector    collapse_detector;
-    DisplacementControl displacement_control;
-    /** Under displacement control: the load factor reached, the loads of
-     * load factor 1 and their traction resultant. */
-    double                             controlled_load_factor = 0;
-    TrilinosWrappers::MPI::Vector      reference_loads;
-    Tensor<1, 2>                       unit_traction_resultant;
+    double                             strength_factor = 1;
+    CollapseDetector                   collapse_detector;
+    DisplacementControl                displacement_control;
     Tensor<1, 2>                       gravity;
     BackgroundGrid                     grid;
     LinearElasticMaterial              material;
@@ -212,8 +179,7 @@ namespace bsmpm
     Probe                            probe;
     BoundaryCurves                   boundary_curves;
     NeumannLoads                     neumann_loads;
-    ImplicitBoundary                 implicit_boundary;
-    NitscheBoundary                  nitsche_boundary;
+    SupportMethods                   supports;
     CurveContact                     contact;
     GhostPenalty                     ghost_penalty;
     SupportReaction                  reactions;
@@ -226,18 +192,15 @@ namespace bsmpm
     std::unique_ptr<ExactSolution>   exact_solution;
     std::unique_ptr<SystemAssembly>  assembly;
     std::unique_ptr<IncrementSolver> increment_solver;
+    std::unique_ptr<LoadStepper>     load_stepper;
+    std::unique_ptr<RunCheckpoint>   run_checkpoint;
 
     LinearAlgebra::distributed::Vector<double> increment;
     /** Whether points moved since they were last sorted into cells. */
     bool points_moved = false;
-    /** Nodal values d^a of the prescribed displacement increment (IBM). */
-    LinearAlgebra::distributed::Vector<double> prescribed;
-    bool                                       has_prescribed = false;
-    /** Locally owned cells crossed by an IBM support band. */
+    /** Locally owned cells where a support method displaces the points. */
     std::vector<bool>        band_cells;
     std::vector<CellMoments> cell_moments;
-    /** Support quality of every locally owned cell in this step. */
-    std::vector<double> cell_quality;
 
     RunSummary run_summary;
   };

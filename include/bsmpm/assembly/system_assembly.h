@@ -12,9 +12,8 @@
 #include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
-#include <bsmpm/boundary/implicit_boundary.h>
 #include <bsmpm/boundary/neumann_loads.h>
-#include <bsmpm/boundary/nitsche_boundary.h>
+#include <bsmpm/boundary/support_methods.h>
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
@@ -36,8 +35,8 @@ namespace bsmpm
    *   face supports;
    * - K and r = f_ext(lambda) - f_int(sigma_n) from the cell moments of the
    *   material points (Q1CellKernel), the ghost penalty, the supports on
-   *   the boundary curves (implicit boundary method, Nitsche) and the loads
-   *   on them.
+   *   the boundary curves (every SupportMethod in turn: the implicit
+   *   boundary method, Nitsche, ...) and the loads on them.
    *
    * The sparsity pattern holds the couplings of the full grid, so it is
    * built once for all load steps, whichever cells hold material.
@@ -52,9 +51,9 @@ namespace bsmpm
       const LinearElasticMaterial &material;
       const BoundaryCurves        &curves;
       NeumannLoads                &neumann_loads;
-      ImplicitBoundary            &implicit_boundary;
-      const NitscheBoundary       &nitsche_boundary;
-      const GhostPenalty          &ghost_penalty;
+      /** The support methods, each called in turn. */
+      SupportMethods     &supports;
+      const GhostPenalty &ghost_penalty;
       /** The scene's exact solution, or nullptr. */
       const ExactSolution *exact_solution;
       /** Gravitational acceleration (the body force is density times it). */
@@ -62,7 +61,36 @@ namespace bsmpm
       /** Whether the linear kernel takes the cell-mean volumetric strain
        * (B-bar, "Material/Volumetric strain"); the boundary terms then pair
        * the same B-bar stress with it. */
-      bool b_bar = false;
+      bool b_bar;
+      /**
+       * A nonlinear material's points, or nullptr: assemble() then leaves
+       * out the stiffness and internal force of the cells where they hold
+       * material, which a nonlinear model adds per iteration
+       * (ConstitutiveUpdate). A cell of the body that holds no point (a
+       * sliver the boundary has just cut off, given its exact moments and
+       * the neighbours' stress by CutCellQuadrature) keeps the elastic
+       * stiffness and that stress, as in a linear run: without them its
+       * outer vertices would hold nothing.
+       */
+      const MaterialPoints *material_points;
+      /** With material points: such a cell is left to the points too where
+       * a face neighbour holds material (the cut-cell quadrature is on):
+       * ConstitutiveUpdate integrates it with the neighbourhood's state
+       * (MaterialPoints::neighbourhood_mean_properties()). */
+      bool cells_without_points;
+      /** Finite strain: the body force acts on the points' masses
+       * (ConstitutiveUpdate integrates it), and a pressure follows the
+       * boundary within the step, so that its load stiffness enters the
+       * matrix (NeumannLoads). */
+      bool finite_strain;
+      /** Contact of the curves with rigid bodies, or nullptr:
+       * newton_system() adds its forces and their derivative
+       * (CurveContact::add_newton_terms()). */
+      CurveContact *contact;
+      /** The boundary curves (by index) whose supports' terms assemble()
+       * keeps apart, each in a matrix of the system's pattern, for
+       * support_forces(). */
+      std::vector<unsigned int> reaction_curves;
     };
 
     SystemAssembly(const Parts &parts, TimerOutput &timer);
@@ -82,19 +110,44 @@ namespace bsmpm
     void
     make_constraints(const std::vector<CellMoments> &moments);
 
+    /** Whether a support method imposes the prescribed displacements
+     * through nodal values fitted by least squares
+     * (SupportMethod::fits_prescribed_displacement()). */
+    bool
+    fits_prescribed_displacement() const
+    {
+      return fitting_method != nullptr;
+    }
+
+    /**
+     * Fits those nodal values d^a to the prescribed displacements times
+     * @p increment_factor (the load increment's share); assemble() and
+     * prescribed_displacement() then take them. Returns the root mean
+     * square misfit along the supports.
+     */
+    double
+    fit_prescribed_displacement(const double increment_factor);
+
+    /** The nodal values of the last fit_prescribed_displacement(), or
+     * nullptr if there was none. */
+    const LinearAlgebra::distributed::Vector<double> *
+    prescribed_displacement() const
+    {
+      return has_prescribed ? &prescribed : nullptr;
+    }
+
     /**
      * Assembles K and r for load factor @p load_factor, the load increment
      * of the step being @p increment_factor (prescribed displacements are
-     * applied incrementally). @p quality: support quality of every locally
-     * owned cell (for the ghost penalty). @p prescribed: the nodal values
-     * d^a of an IBM prescribed displacement increment, or nullptr.
+     * applied incrementally; fitted ones as of the last
+     * fit_prescribed_displacement()). @p quality: support quality of every
+     * locally owned cell (for the ghost penalty).
      */
     void
-    assemble(const double                                      load_factor,
-             const double                                      increment_factor,
-             const std::vector<CellMoments>                   &moments,
-             const std::vector<double>                        &quality,
-             const LinearAlgebra::distributed::Vector<double> *prescribed);
+    assemble(const double                    load_factor,
+             const double                    increment_factor,
+             const std::vector<CellMoments> &moments,
+             const std::vector<double>      &quality);
 
     /**
      * The loads of load factor 1 (body force and tractions) with the
@@ -140,50 +193,6 @@ namespace bsmpm
     {
       return newton_residual;
     }
-    /**
-     * With @p points, assemble() leaves out the stiffness and internal
-     * force of the cells where @p points hold material: a nonlinear model
-     * adds them per iteration (ConstitutiveUpdate). A cell of the body
-     * that holds no point (a sliver the boundary has just cut off, given
-     * its exact moments and the neighbours' stress by CutCellQuadrature)
-     * keeps the elastic stiffness and that stress, as in a linear run:
-     * without them its outer vertices would hold nothing. With
-     * @p cells_without_points (the cut-cell quadrature is on), such a cell
-     * is left to the points too where a face neighbour holds material:
-     * ConstitutiveUpdate integrates it with the neighbourhood's state
-     * (MaterialPoints::neighbourhood_mean_properties()).
-     */
-    void
-    leave_material_to_points(const MaterialPoints *points,
-                             const bool            cells_without_points = false)
-    {
-      material_points             = points;
-      material_from_points        = points != nullptr;
-      pointless_cells_from_points = cells_without_points;
-    }
-
-    /**
-     * Finite strain: the body force acts on the points' masses
-     * (ConstitutiveUpdate integrates it), and a pressure follows the
-     * boundary within the step, so that its load stiffness enters the
-     * matrix (NeumannLoads).
-     */
-    void
-    use_finite_strain(const bool yes)
-    {
-      finite_strain = yes;
-    }
-
-    /**
-     * Contact of the curves with rigid bodies: newton_system() adds its
-     * forces and their derivative (CurveContact::add_newton_terms()).
-     */
-    void
-    use_contact(CurveContact *curve_contact)
-    {
-      contact = curve_contact;
-    }
-
     /** Whether the contact terms of the last newton_system() kept the
      * tangent symmetric (nothing slides). */
     bool
@@ -193,19 +202,8 @@ namespace bsmpm
     }
 
     /**
-     * Which boundary curves (by index) assemble() keeps the supports'
-     * terms (implicit boundary method, Nitsche) of apart, each in a matrix
-     * of the system's pattern, for support_forces().
-     */
-    void
-    keep_support_terms(const std::vector<unsigned int> &curves)
-    {
-      support_curves = curves;
-    }
-
-    /**
-     * The force that the supports of curve @p curve (one of those of
-     * keep_support_terms()) exert on the grid's DoFs at the end of a step
+     * The force that the supports of curve @p curve (one of
+     * Parts::reaction_curves) exert on the grid's DoFs at the end of a step
      * whose converged increment is @p increment: r_s - K_s x, their share
      * of the system of the last assemble() (without constraints, so that
      * DoFs that the grid's faces hold keep their share). The rest of the
@@ -264,15 +262,6 @@ namespace bsmpm
     {
       return system_rhs;
     }
-    /** A matrix with the system's sparsity pattern for the IBM
-     * least-squares fit of prescribed displacements (set up only when the
-     * curves prescribe one). */
-    TrilinosWrappers::SparseMatrix &
-    fit_matrix()
-    {
-      return boundary_fit_matrix;
-    }
-
     /**
      * The locally owned cells of the weak cells the matrix was last made
      * for. Which cells the matrix couples across faces depends on the
@@ -312,27 +301,27 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix  system_matrix;
     TrilinosWrappers::MPI::Vector   system_rhs;
     /** Where the cells' entries lie in system_matrix. */
-    CellScatter                    scatter;
-    TrilinosWrappers::SparseMatrix boundary_fit_matrix;
-    TrilinosWrappers::SparseMatrix tangent_matrix;
+    CellScatter scatter;
+    /** The support method that fits prescribed displacements by least
+     * squares, or nullptr; the matrix of the fit (the system's pattern),
+     * and the nodal values of the last fit. */
+    const SupportMethod                       *fitting_method = nullptr;
+    TrilinosWrappers::SparseMatrix             boundary_fit_matrix;
+    LinearAlgebra::distributed::Vector<double> prescribed;
+    bool                                       has_prescribed = false;
+    TrilinosWrappers::SparseMatrix             tangent_matrix;
     /** How many times make_matrix() has built system_matrix's layout, and
      * which of them tangent_matrix has (see newton_system()). */
     unsigned int                  matrix_layouts = 0;
     unsigned int                  tangent_layout = 0;
     TrilinosWrappers::MPI::Vector newton_residual;
-    unsigned long long            yielding                    = 0;
-    bool                          material_from_points        = false;
-    bool                          pointless_cells_from_points = false;
-    const MaterialPoints         *material_points             = nullptr;
-    bool                          finite_strain               = false;
-    CurveContact                 *contact                     = nullptr;
-    bool                          contact_symmetric           = true;
-    double                        internal_force_norm         = 0;
-    /** The implicit boundary's band by cell, for the tangent of nonlinear
+    unsigned long long            yielding            = 0;
+    bool                          contact_symmetric   = true;
+    double                        internal_force_norm = 0;
+    /** The supports' bands by cell, for the tangent of nonlinear
      * materials (ConstitutiveUpdate::cell_system()). */
     ConstitutiveUpdate::SupportBands support_bands;
-    /** keep_support_terms(): the curves, their supports' terms. */
-    std::vector<unsigned int>                   support_curves;
+    /** The supports' terms of Parts::reaction_curves. */
     std::vector<TrilinosWrappers::SparseMatrix> support_matrices;
     std::vector<TrilinosWrappers::MPI::Vector>  support_rhs;
     /** Whether support_matrices have the layout of system_matrix. */
@@ -349,19 +338,21 @@ namespace bsmpm
     void
     make_matrix(const std::vector<bool> &weak);
 
-    /** Adds the terms of the supports (implicit boundary method, Nitsche)
-     * of all curves, or of @p only, to @p matrix and @p rhs. */
+    /** What the support methods' terms are made of. */
+    SupportMethod::Context
+    support_context() const;
+
+    /** Adds the terms of every support method of all curves, or of
+     * @p only, to @p matrix and @p rhs. */
     void
-    add_support_terms(
-      const double                                      increment_factor,
-      const LinearAlgebra::distributed::Vector<double> *prescribed,
-      const AffineConstraints<double>                  &constraints,
-      TrilinosWrappers::SparseMatrix                   &matrix,
-      TrilinosWrappers::MPI::Vector                    &rhs,
-      const BoundaryCurve                              *only);
+    add_support_terms(const double                     increment_factor,
+                      const AffineConstraints<double> &constraints,
+                      TrilinosWrappers::SparseMatrix  &matrix,
+                      TrilinosWrappers::MPI::Vector   &rhs,
+                      const BoundaryCurve             *only);
 
     /** Finite strain: the supports' terms that depend on the stress of
-     * the increment @p increment (ImplicitBoundary and NitscheBoundary::
+     * the increment @p increment (SupportMethod::
      * add_finite_strain_terms()) of all curves, or of @p only, as internal
      * forces into @p force and, unless nullptr, their derivative into
      * @p tangent. Returns how many of the supports' points the increment
@@ -375,15 +366,13 @@ namespace bsmpm
       TrilinosWrappers::MPI::Vector                    &force,
       const BoundaryCurve                              *only = nullptr) const;
 
-    /** Finite strain: the share of the supports of keep_support_terms()'s
-     * curves in the internal force of the last newton_system(). */
+    /** Finite strain: the share of the supports of the reaction curves
+     * in the internal force of the last newton_system(). */
     std::vector<TrilinosWrappers::MPI::Vector> support_finite_strain_forces;
 
-    /** Assembles the supports' terms of keep_support_terms()'s curves. */
+    /** Assembles the supports' terms of the reaction curves. */
     void
-    assemble_support_terms(
-      const double                                      increment_factor,
-      const LinearAlgebra::distributed::Vector<double> *prescribed);
+    assemble_support_terms(const double increment_factor);
 
     /** The weak cells the matrix was made for (make_matrix()), and the
      * cells whose face couplings it holds: those and their neighbours. */

@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/support_method.h>
 #include <bsmpm/boundary/support_stress.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/q1_cell_kernel.h>
@@ -16,6 +17,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace bsmpm
@@ -48,25 +50,22 @@ namespace bsmpm
    * A prescribed displacement enters through nodal values d^a, the global
    * least-squares fit of u^a along the boundary (eq. 36), and the force
    * f^d = int Bbar^T C B d^a (eq. 33).
+   *
+   * A SupportMethod, registered as "implicit boundary".
    */
-  class ImplicitBoundary
+  class ImplicitBoundary : public SupportMethod
   {
   public:
     /** A quadrature point of the band, kept for output and for the
      * tangent of nonlinear materials (ConstitutiveUpdate::SupportBandPoint). */
-    struct BandPoint
-    {
-      Point<2>     position;
-      double       d_function;
-      double       weight;
-      unsigned int cell_index;         // active_cell_index()
-      Point<2>     reference_position; // in that cell
-    };
+    using BandPoint = SupportMethod::BandPoint;
+
+    ImplicitBoundary();
 
     static void
     declare_parameters(ParameterHandler &prm);
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm) override;
 
     /** The D-function of eq. 20 and its derivative. */
     static double
@@ -87,30 +86,26 @@ namespace bsmpm
      * previous steps and of the force of a prescribed displacement: through
      * @p prescribed (d^a with ghosts, frame and paper formulations) or, in
      * the consistent formulation, from the prescribed values themselves
-     * times @p increment_factor (@p exact for "displacement exact").
-     * With @p only, the supports of that curve alone (SupportReaction).
-     * With a B-bar @p kernel, @p moments (by active_cell_index) give each
-     * cell's centroid for the B-bar stress of the band's cross terms.
+     * times @p increment_factor (the context's exact solution for
+     * "displacement exact"). With @p only, the supports of that curve alone
+     * (SupportReaction). With a B-bar kernel, @p moments (by
+     * active_cell_index) give each cell's centroid for the B-bar stress of
+     * the band's cross terms.
      *
-     * With @p finite_strain, the consistent formulation adds nothing here
+     * In finite strain, the consistent formulation adds nothing here
      * (but records the band points and the step's prescribed data): its
      * band terms depend on the stress of the step's deformation and join
      * the Newton system per iteration (add_finite_strain_terms()).
      */
     void
-    assemble(const BoundaryCurves                             &curves,
-             const BackgroundGrid                             &grid,
-             const Q1CellKernel                               &kernel,
-             const Tensor<2, 3>                               &C,
-             const LinearAlgebra::distributed::Vector<double> *prescribed,
-             const ExactSolution                              *exact,
+    assemble(const Context                                    &context,
              const double                                      increment_factor,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const std::vector<CellMoments>                   *moments,
              const AffineConstraints<double>                  &constraints,
              TrilinosWrappers::SparseMatrix                   &matrix,
              TrilinosWrappers::MPI::Vector                    &rhs,
-             const BoundaryCurve                              *only = nullptr,
-             const std::vector<CellMoments> *moments                = nullptr,
-             const bool                      finite_strain          = false);
+             const BoundaryCurve *only = nullptr) override;
 
     /**
      * Finite strain, consistent formulation (doc/finite-strain.md,
@@ -133,15 +128,13 @@ namespace bsmpm
      */
     void
     add_finite_strain_terms(
-      const BoundaryCurves                             &curves,
-      const BackgroundGrid                             &grid,
-      const Q1CellKernel                               &kernel,
+      const Context                                    &context,
       const LinearAlgebra::distributed::Vector<double> &increment,
       const SupportStress                              &stress,
       const AffineConstraints<double>                  &constraints,
       TrilinosWrappers::SparseMatrix                   *tangent,
       TrilinosWrappers::MPI::Vector                    &internal_force,
-      const BoundaryCurve                              *only = nullptr) const;
+      const BoundaryCurve *only = nullptr) const override;
 
     /** Whether any IBM support prescribes a displacement (both
      * components: a normal displacement is imposed by the consistent
@@ -157,7 +150,7 @@ namespace bsmpm
      * w(x_b)), and needs no fit.
      */
     bool
-    fits_prescribed_displacement(const BoundaryCurves &curves) const
+    fits_prescribed_displacement(const BoundaryCurves &curves) const override
     {
       return formulation != Formulation::consistent &&
              prescribes_displacement(curves);
@@ -172,13 +165,17 @@ namespace bsmpm
      */
     double
     fit_prescribed_displacement(
-      const BoundaryCurves                       &curves,
-      const BackgroundGrid                       &grid,
-      const Q1CellKernel                         &kernel,
-      const ExactSolution                        *exact,
+      const Context                              &context,
       const double                                factor,
       TrilinosWrappers::SparseMatrix             &mass,
-      LinearAlgebra::distributed::Vector<double> &prescribed) const;
+      LinearAlgebra::distributed::Vector<double> &prescribed) const override;
+
+    /** The band changes the displacement of the points in it. */
+    bool
+    displaces_points() const override
+    {
+      return true;
+    }
 
     /**
      * The displacement increment of a point at @p x (before it moves) whose
@@ -193,15 +190,55 @@ namespace bsmpm
       const BackgroundGrid                                &grid,
       const Point<2>                                      &x,
       const std::function<Tensor<1, 2>(const Point<2> &)> &field,
-      Tensor<1, 2>                                        &w) const;
+      Tensor<1, 2>                                        &w) const override;
 
     const std::vector<BandPoint> &
-    band_points() const
+    band_points() const override
     {
       return points;
     }
 
   private:
+    /**
+     * What the band's terms need at a Gauss point c of a piece: the inward
+     * normal n, the tangent t = n turned anticlockwise, n n^T, the grid
+     * field on the boundary (the value of each shape function at c and its
+     * derivative along t), and for a support that imposes a prescribed
+     * displacement its increment g at c and dg/dt (zero otherwise). A
+     * normal displacement is g = g_n n with n the normal at c: the
+     * roller's terms treat n as constant across the band and along the
+     * piece.
+     */
+    struct BoundaryFrame
+    {
+      Tensor<1, 2>                                          normal;
+      Tensor<1, 2>                                          tangent;
+      Tensor<2, 2>                                          nn;
+      std::array<Tensor<1, 2>, Q1CellKernel::dofs_per_cell> trace;
+      std::array<Tensor<1, 2>, Q1CellKernel::dofs_per_cell> trace_dt;
+      Tensor<1, 2>                                          g;
+      Tensor<1, 2>                                          dg_dt;
+    };
+
+    /** Refuses what a formulation does not implement for the supports of
+     * @p curves: a normal displacement (frame and paper), finite strain
+     * (frame and paper). Collective: every process holds every curve. */
+    void
+    check_formulation(const BoundaryCurves &curves,
+                      const bool            finite_strain) const;
+
+    /** The BoundaryFrame of Gauss point @p q of the piece of @p values'
+     * last reinit(); @p imposed: the condition whose prescribed
+     * displacement times @p factor the support imposes, or nullptr. */
+    static void
+    boundary_frame(const CurvePieceValues &values,
+                   const unsigned int      q,
+                   const Q1CellKernel     &kernel,
+                   const CurveCondition   *imposed,
+                   const double            factor,
+                   const ExactSolution    *exact,
+                   BoundaryFrame          &frame);
+
     /** The value of u^a of @p condition at @p x: the displacement, or for
      * a normal displacement u_n n with n = @p outward_normal (the curve's
      * outward normal, at x or at the boundary point the caller holds it

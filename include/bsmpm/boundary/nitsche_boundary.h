@@ -9,12 +9,14 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/support_method.h>
 #include <bsmpm/boundary/support_stress.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/verification/exact_solution.h>
 
+#include <memory>
 #include <vector>
 
 namespace bsmpm
@@ -35,41 +37,42 @@ namespace bsmpm
    * of a load step, u - g is the increment and the traction sigma_n n of the
    * previous steps, read from the curve's points, enters the right-hand
    * side: it is the support's reaction so far.
+   *
+   * A SupportMethod, registered as "nitsche".
    */
-  class NitscheBoundary
+  class NitscheBoundary : public SupportMethod
   {
   public:
+    NitscheBoundary();
+
     static void
     declare_parameters(ParameterHandler &prm);
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm) override;
 
     /**
      * Adds the Nitsche terms of all Nitsche supports on locally owned cells.
      * @p increment_factor scales the prescribed displacement to the
-     * increment of this step. With a B-bar @p kernel, @p moments (by
+     * increment of this step (no fitted @p prescribed: Nitsche imposes the
+     * prescribed values themselves). With a B-bar kernel, @p moments (by
      * active_cell_index) give each cell's centroid: the consistency terms
      * take the B-bar stress, the one the cell's stiffness is made of.
      *
-     * With @p finite_strain the consistency term - int (sigma(u) n) . v
+     * In finite strain the consistency term - int (sigma(u) n) . v
      * and the reaction of the previous steps are left out: they depend on
      * the stress of the step's deformation and join the Newton system per
      * iteration (add_finite_strain_terms()). The symmetric term, which
      * multiplies u - g, keeps the elastic stiffness, and the penalty stays.
      */
     void
-    assemble(const BoundaryCurves            &curves,
-             const BackgroundGrid            &grid,
-             const Q1CellKernel              &kernel,
-             const LinearElasticMaterial     &material,
-             const ExactSolution             *exact,
-             const double                     increment_factor,
-             const AffineConstraints<double> &constraints,
-             TrilinosWrappers::SparseMatrix  &matrix,
-             TrilinosWrappers::MPI::Vector   &rhs,
-             const BoundaryCurve             *only          = nullptr,
-             const std::vector<CellMoments>  *moments       = nullptr,
-             const bool                       finite_strain = false) const;
+    assemble(const Context                                    &context,
+             const double                                      increment_factor,
+             const LinearAlgebra::distributed::Vector<double> *prescribed,
+             const std::vector<CellMoments>                   *moments,
+             const AffineConstraints<double>                  &constraints,
+             TrilinosWrappers::SparseMatrix                   &matrix,
+             TrilinosWrappers::MPI::Vector                    &rhs,
+             const BoundaryCurve *only = nullptr) override;
 
     /**
      * Finite strain (doc/finite-strain.md, "Supports in finite strain"):
@@ -88,15 +91,13 @@ namespace bsmpm
      */
     void
     add_finite_strain_terms(
-      const BoundaryCurves                             &curves,
-      const BackgroundGrid                             &grid,
-      const Q1CellKernel                               &kernel,
+      const Context                                    &context,
       const LinearAlgebra::distributed::Vector<double> &increment,
       const SupportStress                              &stress,
       const AffineConstraints<double>                  &constraints,
       TrilinosWrappers::SparseMatrix                   *tangent,
       TrilinosWrappers::MPI::Vector                    &internal_force,
-      const BoundaryCurve                              *only = nullptr) const;
+      const BoundaryCurve *only = nullptr) const override;
 
   private:
     double       penalty        = 100;

@@ -4,17 +4,13 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
+#include <bsmpm/base/exception_message.h>
+
 #include <string>
 
 namespace bsmpm
 {
   using namespace dealii;
-
-  /** The message of a deal.II exception without its source location and
-   * without the indentation deal.II puts in front of each line: what a
-   * user of bsmpm is told. */
-  std::string
-  message_of(const ExceptionBase &e);
 
   /**
    * How a run that failed tells so: "bsmpm: error: <message>" on the

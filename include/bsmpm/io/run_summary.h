@@ -5,6 +5,7 @@
 #include <deal.II/base/timer.h>
 
 #include <bsmpm/io/output_writer.h>
+#include <bsmpm/nonlinear/load_step_record.h>
 #include <bsmpm/verification/verification.h>
 
 #include <map>
@@ -21,28 +22,11 @@ namespace bsmpm
    */
   struct RunSummary
   {
-    struct Step
+    /** A load step: its number, what the solver did (LoadStepRecord) and
+     * the scene's quantities after it. */
+    struct Step : LoadStepRecord
     {
-      unsigned int number      = 0;
-      double       load_factor = 0;
-      std::string  solver;
-      unsigned int iterations        = 0;
-      unsigned int refinement_steps  = 0;
-      double       relative_residual = 0;
-      unsigned int n_active_cells    = 0;
-      /** Nonlinear materials: load increments the step took (more than
-       * one after cuts), points that yielded, and per Newton iteration of
-       * all its increments the relative residual and correction. */
-      unsigned int        increments = 1;
-      unsigned long long  n_yielded  = 0;
-      std::vector<double> newton_residuals;
-      std::vector<double> newton_corrections;
-      /** Increments of the step whose last cut did not converge but whose
-       * best iterate was accepted (Nonlinear solver/Stall tolerance), and
-       * the largest of their residuals relative to the largest internal
-       * force; 0 if none. */
-      unsigned int stalled_increments = 0;
-      double       stalled_residual   = 0;
+      unsigned int number = 0;
       /** The scene's quantities after this step (support reactions, the
        * probe, ...): load-displacement curves. */
       std::map<std::string, double> quantities;
@@ -110,6 +94,12 @@ namespace bsmpm
     record_failure(const unsigned int  step,
                    const std::string  &message,
                    const OutputWriter &output);
+
+    /** Increments accepted at their best iterate (Nonlinear solver/Stall
+     * tolerance): how many and the largest residual into the quantities,
+     * and a note through @p pcout, where there are any. */
+    void
+    report_stalled_increments(const dealii::ConditionalOStream &pcout);
 
     /** Errors and quantities, one per line, six significant digits. */
     void

@@ -4,8 +4,8 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
-#include <bsmpm/boundary/implicit_boundary.h>
 #include <bsmpm/boundary/neumann_loads.h>
+#include <bsmpm/boundary/support_methods.h>
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/io/output_writer.h>
@@ -27,12 +27,12 @@ namespace bsmpm
   class StepOutput
   {
   public:
-    StepOutput(OutputWriter           &output,
-               const BackgroundGrid   &grid,
-               const MaterialPoints   &points,
-               const BoundaryCurves   &boundary_curves,
-               const NeumannLoads     &neumann_loads,
-               const ImplicitBoundary &implicit_boundary);
+    StepOutput(OutputWriter         &output,
+               const BackgroundGrid &grid,
+               const MaterialPoints &points,
+               const BoundaryCurves &boundary_curves,
+               const NeumannLoads   &neumann_loads,
+               const SupportMethods &supports);
 
     /**
      * Writes load step @p step at load factor @p load_factor and rewrites
@@ -62,13 +62,13 @@ namespace bsmpm
     void
     write_curves(const unsigned int step, const double load_factor) const;
 
-    OutputWriter           &output;
-    const BackgroundGrid   &grid;
-    const MaterialPoints   &points;
-    const BoundaryCurves   &boundary_curves;
-    const NeumannLoads     &neumann_loads;
-    const ImplicitBoundary &implicit_boundary;
-    const CurveContact     *contact = nullptr;
+    OutputWriter         &output;
+    const BackgroundGrid &grid;
+    const MaterialPoints &points;
+    const BoundaryCurves &boundary_curves;
+    const NeumannLoads   &neumann_loads;
+    const SupportMethods &supports;
+    const CurveContact   *contact = nullptr;
   };
 } // namespace bsmpm
 
