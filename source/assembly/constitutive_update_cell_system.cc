@@ -194,13 +194,15 @@ namespace bsmpm
 
     // Moment completion: virtual points with the points' mean state where
     // their weights miss the exact moments (completion_points()).
-    const auto completion = completion_points(exact_moments, W, Ws, Wt);
-    if (!completion.empty())
+    const VirtualPoints completion =
+      completion_points(exact_moments, W, Ws, Wt);
+    if (completion.n > 0)
       {
         const std::vector<double>     mean = mean_state(cell_points, W);
         const ArrayView<const double> mean_props(mean.data(), mean.size());
-        for (const auto &[st, w] : completion)
-          if (!add_point(st, mean_props, w, false))
+        for (unsigned int q = 0; q < completion.n; ++q)
+          if (!add_point(
+                completion.st[q], mean_props, completion.weight[q], false))
             return n_yielded;
       }
 
@@ -277,9 +279,11 @@ namespace bsmpm
         D1[r] = response.tangent[i][j][0][0] + response.tangent[i][j][1][1] +
                 response.tangent[i][j][2][2];
       }
-    const Tensor<2, 3>          DL = D * kin.log_derivative;
-    const auto                  N  = Q1CellKernel::vertex_shape_values(st);
-    std::array<Tensor<1, 2>, n> tau_g;
+    const Tensor<2, 3> DL = D * kin.log_derivative;
+    const auto         N  = Q1CellKernel::vertex_shape_values(st);
+    // tau g_i by shape function (a plain array: each entry is set below,
+    // and a Tensor's zeros would be written for every point).
+    double tau_g[n][2];
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int r = 0; r < 2; ++r)
         tau_g[i][r] =
@@ -336,7 +340,7 @@ namespace bsmpm
 
 
 
-  std::vector<std::pair<Point<2>, double>>
+  ConstitutiveUpdate::VirtualPoints
   ConstitutiveUpdate::completion_points(const CellMoments *exact_moments,
                                         const double       W,
                                         const double       Ws,
@@ -351,7 +355,7 @@ namespace bsmpm
     // deformation gives every point the same stress and the cell's force
     // is that of the exact geometry, while the tangent stays the
     // derivative of the force (and symmetric where the model's is).
-    std::vector<std::pair<Point<2>, double>> points;
+    VirtualPoints points;
     if (!completes_moments() || exact_moments == nullptr || !(W > 0))
       return points;
     const CellMoments &m         = *exact_moments;
@@ -360,8 +364,8 @@ namespace bsmpm
         std::abs(m.vt - Wt) > tolerance)
       {
         if (m.v > 0)
-          points.emplace_back(Point<2>(m.vs / m.v, m.vt / m.v), m.v);
-        points.emplace_back(Point<2>(Ws / W, Wt / W), -W);
+          points.add(Point<2>(m.vs / m.v, m.vt / m.v), m.v);
+        points.add(Point<2>(Ws / W, Wt / W), -W);
       }
     return points;
   }

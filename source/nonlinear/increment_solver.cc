@@ -138,12 +138,7 @@ namespace bsmpm
     // have.
     increment = 0;
     increment.update_ghost_values();
-    // The scale of the tolerance: |R(0)|, but not below a millionth of the
-    // largest internal force of the run so far. An increment that asks
-    // next to nothing (a body that a rigid body has let go of, its
-    // residual stresses in balance) has an |R(0)| that is round-off of
-    // forces a billion times larger, which a relative tolerance cannot
-    // reach.
+    // No best iterate of this increment yet (newton_residual()).
     best_norm = std::numeric_limits<double>::infinity();
     const bool small_strain =
       update.kinematics() == ConstitutiveUpdate::Kinematics::small_strain;
@@ -170,7 +165,11 @@ namespace bsmpm
     // The tolerance's scale, |R(0)|; with the tangent predictor |R| at its
     // vanishing step, which differs from it by a millionth of the
     // increment's force: one system is the scale and the start (one Newton
-    // system less per increment).
+    // system less per increment). Not below a millionth of the largest
+    // internal force of the run so far: an increment that asks next to
+    // nothing (a body that a rigid body has let go of, its residual
+    // stresses in balance) has an |R(0)| that is round-off of forces a
+    // billion times larger, which a relative tolerance cannot reach.
     NewtonStart  start;
     const double at_start =
       newton_residual(prescribed, increment, motion, keep_best);
@@ -315,6 +314,7 @@ namespace bsmpm
     SystemAssembly           &assembly = parts.assembly;
     const ConstitutiveUpdate &update   = *parts.constitutive_update;
 
+    NewtonCorrection last;
     // Rigid bodies under a force: their free translation c joins the
     // unknowns, and its equilibrium r_c the residual (RigidBodyMotion).
     RigidBodyMotion *motion =
@@ -334,8 +334,7 @@ namespace bsmpm
     // refinement step did not lower it).
     const double enough =
       1e-3 * parts.newton.residual_tolerance() * start.reference;
-    NewtonCorrection last;
-    const auto       correct = [&]() {
+    const auto correct = [&]() {
       return newton_correction(enough, increment, motion, last, solves);
     };
     const auto step_back = [&](const double alpha) {

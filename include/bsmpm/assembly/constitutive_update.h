@@ -15,8 +15,8 @@
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 
+#include <array>
 #include <memory>
-#include <utility>
 #include <vector>
 
 namespace bsmpm
@@ -570,11 +570,29 @@ namespace bsmpm
     single_point(const std::vector<PointView> &cell_points,
                  const CellMoments            *exact_moments) const;
 
-    /** The virtual points (reference coordinates, weight) that complete
-     * the moments of the points' weights W, Ws, Wt to the cell's exact
-     * moments @p exact_moments, if cell_system() completes them: the exact
-     * area at the exact centroid, minus W at the points' centroid. */
-    std::vector<std::pair<Point<2>, double>>
+    /** At most two virtual points of a cell: reference coordinates and
+     * weights (a fixed array: cell_system() makes them for every cut cell
+     * of every Newton system). */
+    struct VirtualPoints
+    {
+      std::array<Point<2>, 2> st;
+      std::array<double, 2>   weight;
+      unsigned int            n = 0;
+
+      void
+      add(const Point<2> &point, const double w)
+      {
+        st[n]     = point;
+        weight[n] = w;
+        ++n;
+      }
+    };
+
+    /** The virtual points that complete the moments of the points'
+     * weights W, Ws, Wt to the cell's exact moments @p exact_moments, if
+     * cell_system() completes them: the exact area at the exact centroid,
+     * minus W at the points' centroid. */
+    VirtualPoints
     completion_points(const CellMoments *exact_moments,
                       const double       W,
                       const double       Ws,
