@@ -54,36 +54,97 @@ namespace bsmpm
 
 
 
-  DirectSolver::Status
-  SubdomainMumps::factorize(const Epetra_CrsMatrix &matrix)
+  /** What factorize() finds out about the matrix's structure on the way
+   * to the local unknowns and the triplets. */
+  struct SubdomainMumps::Structure
   {
-    const Epetra_Map &row_map   = matrix.RowMap();
-    const Epetra_Map &col_map   = matrix.ColMap();
-    const int         n_rows    = matrix.NumMyRows();
-    const int         n_columns = col_map.NumMyElements();
+    explicit Structure(const Epetra_CrsMatrix &matrix)
+      : matrix(matrix)
+    {}
 
-    // The process that owns each column (collective).
-    std::vector<int> column_ids(n_columns), owner(n_columns),
-      owner_row(n_columns);
-    col_map.MyGlobalElements(column_ids.data());
-    row_map.RemoteIDList(n_columns,
-                         column_ids.data(),
-                         owner.data(),
-                         owner_row.data());
-    const auto row_columns = [&](const int row) {
+    /** The column indices of local row @p row. */
+    std::pair<int, int *>
+    row_columns(const int row) const
+    {
       int  n       = 0;
       int *indices = nullptr;
       matrix.Graph().ExtractMyRowView(row, n, indices);
       return std::make_pair(n, indices);
-    };
+    }
+
+    /** The code of local row @p row: its interior index (>= 0) or -1 -
+     * its interface number. */
+    int
+    code_of_row(const int row) const
+    {
+      return on_interface[row] ? -1 - number_of.at(matrix.GRID(row)) :
+                                 interior[row];
+    }
+
+    const Epetra_CrsMatrix &matrix;
+    /** By local column: its global id, the process that owns it and its
+     * row there. */
+    std::vector<int> column_ids, owner, owner_row;
+    /** By local row: whether it is an interface row; its interior index
+     * (-1 on the interface). */
+    std::vector<char> on_interface;
+    std::vector<int>  interior;
+    /** The global ids of this process' interface rows, and the interface
+     * number of every interface id. */
+    std::vector<int>             own_interface;
+    std::unordered_map<int, int> number_of;
+    /** The local entries as pairs of codes (code_of_row()). */
+    std::vector<std::pair<int, int>> entries;
+  };
+
+
+
+  DirectSolver::Status
+  SubdomainMumps::factorize(const Epetra_CrsMatrix &matrix)
+  {
+    Structure structure(matrix);
+    find_interface(structure);
+    if (n_interface > max_interface_size)
+      return DirectSolver::Status::other;
+    collect_entries(structure);
+    number_local_unknowns(structure);
+    const DirectSolver::Status status = analyse();
+    if (status != DirectSolver::Status::success)
+      return status;
+    return refactorize(matrix);
+  }
+
+
+
+  void
+  SubdomainMumps::find_interface(Structure &structure)
+  {
+    const Epetra_CrsMatrix &matrix    = structure.matrix;
+    const Epetra_Map       &row_map   = matrix.RowMap();
+    const Epetra_Map       &col_map   = matrix.ColMap();
+    const int               n_rows    = matrix.NumMyRows();
+    const int               n_columns = col_map.NumMyElements();
+
+    // The process that owns each column (collective).
+    auto &column_ids = structure.column_ids;
+    auto &owner      = structure.owner;
+    column_ids.resize(n_columns);
+    owner.resize(n_columns);
+    structure.owner_row.resize(n_columns);
+    col_map.MyGlobalElements(column_ids.data());
+    row_map.RemoteIDList(n_columns,
+                         column_ids.data(),
+                         owner.data(),
+                         structure.owner_row.data());
 
     // 1. The interface: rows with a column of a later process, and rows
     //    that a later process' row has a column in (told their owner).
-    std::vector<char>                        on_interface(n_rows, 0);
+    auto &on_interface = structure.on_interface;
+    on_interface.assign(n_rows, 0);
     std::map<unsigned int, std::vector<int>> told;
     for (int row = 0; row < n_rows; ++row)
       {
-        const auto [n, indices] = row_columns(row);
+        const auto [n, indices] = structure.row_columns(row);
         for (int k = 0; k < n; ++k)
           {
             const unsigned int o = owner[indices[k]];
@@ -109,46 +170,49 @@ namespace bsmpm
 
     // 2. Interface numbers over all processes; every process knows them
     //    (a few hundred to a few thousand ids).
-    std::vector<int> own_interface;
     for (int row = 0; row < n_rows; ++row)
       if (on_interface[row])
-        own_interface.push_back(matrix.GRID(row));
+        structure.own_interface.push_back(matrix.GRID(row));
     const std::vector<std::vector<int>> all_interface =
-      Utilities::MPI::all_gather(communicator, own_interface);
-    std::unordered_map<int, int> number_of;
+      Utilities::MPI::all_gather(communicator, structure.own_interface);
     for (const auto &ids : all_interface)
       for (const int id : ids)
-        number_of.emplace(id, number_of.size());
-    n_interface = number_of.size();
-    if (n_interface > max_interface_size)
-      return DirectSolver::Status::other;
+        structure.number_of.emplace(id, structure.number_of.size());
+    n_interface = structure.number_of.size();
+  }
 
+
+
+  void
+  SubdomainMumps::collect_entries(Structure &structure)
+  {
     // 3. The local entries, each as a pair of codes: an interior index
     //    (>= 0) or -1 - an interface number. Entries of an interface row
     //    of this process in another process' interior go there.
-    std::vector<int> interior(n_rows, -1);
+    const Epetra_CrsMatrix &matrix = structure.matrix;
+    const int               n_rows = matrix.NumMyRows();
+    structure.interior.assign(n_rows, -1);
     n_interior = 0;
     for (int row = 0; row < n_rows; ++row)
-      if (!on_interface[row])
-        interior[row] = n_interior++;
-    const auto code_of_row = [&](const int row) {
-      return on_interface[row] ? -1 - number_of.at(matrix.GRID(row)) :
-                                 interior[row];
-    };
-    std::vector<std::pair<int, int>>         entries;
+      if (!structure.on_interface[row])
+        structure.interior[row] = n_interior++;
+    const auto                              &owner      = structure.owner;
+    const auto                              &column_ids = structure.column_ids;
+    const auto                              &number_of  = structure.number_of;
+    auto                                    &entries    = structure.entries;
     std::map<unsigned int, std::vector<int>> sent_ids;
     value_position.clear();
     sent_entries.clear();
     for (int row = 0; row < n_rows; ++row)
       {
-        const int row_code      = code_of_row(row);
-        const auto [n, indices] = row_columns(row);
+        const int row_code      = structure.code_of_row(row);
+        const auto [n, indices] = structure.row_columns(row);
         for (int k = 0; k < n; ++k)
           {
             const int c = indices[k];
             int       column_code;
             if (owner[c] == static_cast<int>(this_process))
-              column_code = code_of_row(owner_row[c]);
+              column_code = structure.code_of_row(structure.owner_row[c]);
             else if (const auto it = number_of.find(column_ids[c]);
                      it != number_of.end())
               column_code = -1 - it->second;
@@ -171,34 +235,48 @@ namespace bsmpm
          Utilities::MPI::some_to_some(communicator, sent_ids))
       for (std::size_t m = 0; m + 1 < ids.size(); m += 2)
         {
-          const int column = interior[row_map.LID(ids[m + 1])];
+          const int column =
+            structure.interior[matrix.RowMap().LID(ids[m + 1])];
           AssertThrow(column >= 0, ExcInternalError());
           received_positions[process].push_back(entries.size());
           entries.emplace_back(-1 - number_of.at(ids[m]), column);
         }
+  }
 
+
+
+  int
+  SubdomainMumps::local_of(const int code) const
+  {
+    return code >= 0 ?
+             code :
+             n_interior +
+               static_cast<int>(
+                 std::lower_bound(touched.begin(), touched.end(), -1 - code) -
+                 touched.begin());
+  }
+
+
+
+  void
+  SubdomainMumps::number_local_unknowns(const Structure &structure)
+  {
     // 4. The local unknowns: the interior, then the interface unknowns
     //    this process touches, ascending.
+    const auto &entries = structure.entries;
     touched.clear();
-    for (const int id : own_interface)
-      touched.push_back(number_of.at(id));
+    for (const int id : structure.own_interface)
+      touched.push_back(structure.number_of.at(id));
     for (const auto &[r, c] : entries)
       for (const int code : {r, c})
         if (code < 0)
           touched.push_back(-1 - code);
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    const auto local_of = [&](const int code) {
-      return code >= 0 ?
-               code :
-               n_interior +
-                 static_cast<int>(
-                   std::lower_bound(touched.begin(), touched.end(), -1 - code) -
-                   touched.begin());
-    };
+    const int n_rows = structure.matrix.NumMyRows();
     local_index.resize(n_rows);
     for (int row = 0; row < n_rows; ++row)
-      local_index[row] = local_of(code_of_row(row));
+      local_index[row] = local_of(structure.code_of_row(row));
 
     // 5. The triplets (one triangle of a symmetric matrix), and where each
     //    entry's value goes among them.
@@ -225,7 +303,13 @@ namespace bsmpm
         for (int &position : positions)
           position = kept[position];
       }
+  }
 
+
+
+  DirectSolver::Status
+  SubdomainMumps::analyse()
+  {
     // 6. The analyses: the local matrix with the touched interface as its
     //    Schur complement, and the dense S on process 0.
     const int n_touched = touched.size();
@@ -256,10 +340,8 @@ namespace bsmpm
         status =
           static_cast<int>(interface->analyse(n_interface, rows, columns));
       }
-    status = Utilities::MPI::max(status, communicator);
-    if (status != 0)
-      return static_cast<DirectSolver::Status>(status);
-    return refactorize(matrix);
+    return static_cast<DirectSolver::Status>(
+      Utilities::MPI::max(status, communicator));
   }
 
 

@@ -76,34 +76,48 @@ namespace bsmpm
 
 
 
-  NewtonSolver::Result
-  IncrementSolver::solve_newton(
+  double
+  IncrementSolver::newton_residual(
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const RigidBodyMotion                            *motion,
+    const bool                                        keep_best)
+  {
+    const double grid_norm =
+      parts.assembly.newton_system(*parts.constitutive_update,
+                                   parts.points,
+                                   increment,
+                                   prescribed,
+                                   &elastic_cells);
+    // |(R, r_c)| with the bodies' equilibrium.
+    const double norm =
+      motion == nullptr ?
+        grid_norm :
+        std::sqrt(grid_norm * grid_norm + std::pow(motion->residual_norm(), 2));
+    // The best iterate so far (take_best_iterate()): a copy of the
+    // increment per improvement, only where it may be taken.
+    if (keep_best && norm < best_norm)
+      {
+        best_norm      = norm;
+        best_increment = increment;
+        if (motion != nullptr)
+          best_places = motion->values();
+      }
+    return norm;
+  }
+
+
+
+  IncrementSolver::NewtonStart
+  IncrementSolver::start_newton(
     const double                                      delta,
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     LinearAlgebra::distributed::Vector<double>       &increment,
-    LinearSolves                                     &solves,
+    RigidBodyMotion                                  *motion,
     const bool                                        keep_best)
   {
-    const BackgroundGrid     &grid     = parts.grid;
-    SystemAssembly           &assembly = parts.assembly;
     const ConstitutiveUpdate &update   = *parts.constitutive_update;
-    const MaterialPoints     &points   = parts.points;
-
-    TrilinosWrappers::MPI::Vector last_correction;
-    // Rigid bodies under a force: their free translation c joins the
-    // unknowns, and its equilibrium r_c the residual (RigidBodyMotion).
-    RigidBodyMotion *motion =
-      parts.contact != nullptr && parts.contact->motion().has_unknowns() ?
-        &parts.contact->motion() :
-        nullptr;
-    Vector<double> last_motion_correction;
-    prepare_increment();
-    // |(R, r_c)| of the system that newton_system() assembled.
-    const auto with_bodies = [&](const double norm) {
-      return motion == nullptr ?
-               norm :
-               std::sqrt(norm * norm + std::pow(motion->residual_norm(), 2));
-    };
+    SystemAssembly           &assembly = parts.assembly;
     // The scale of the tolerance, as for the grid, is the residual of a
     // zero increment: the bodies where the last increment left them (their
     // force increment unbalanced), not at the predicted place.
@@ -124,25 +138,8 @@ namespace bsmpm
     // have.
     increment = 0;
     increment.update_ghost_values();
-    // The scale of the tolerance: |R(0)|, but not below a millionth of the
-    // largest internal force of the run so far. An increment that asks
-    // next to nothing (a body that a rigid body has let go of, its
-    // residual stresses in balance) has an |R(0)| that is round-off of
-    // forces a billion times larger, which a relative tolerance cannot
-    // reach.
-    // The best iterate so far (take_best_iterate()): a copy of the
-    // increment per improvement, only where it may be taken.
-    best_norm           = std::numeric_limits<double>::infinity();
-    const auto remember = [&](const double norm) {
-      if (keep_best && norm < best_norm)
-        {
-          best_norm      = norm;
-          best_increment = increment;
-          if (motion != nullptr)
-            best_places = motion->values();
-        }
-      return norm;
-    };
+    // No best iterate of this increment yet (newton_residual()).
+    best_norm = std::numeric_limits<double>::infinity();
     const bool small_strain =
       update.kinematics() == ConstitutiveUpdate::Kinematics::small_strain;
     const NewtonSolver::Predictor predictor =
@@ -168,21 +165,26 @@ namespace bsmpm
     // The tolerance's scale, |R(0)|; with the tangent predictor |R| at its
     // vanishing step, which differs from it by a millionth of the
     // increment's force: one system is the scale and the start (one Newton
-    // system less per increment).
-    const double at_start = remember(with_bodies(assembly.newton_system(
-      update, points, increment, prescribed, &elastic_cells)));
+    // system less per increment). Not below a millionth of the largest
+    // internal force of the run so far: an increment that asks next to
+    // nothing (a body that a rigid body has let go of, its residual
+    // stresses in balance) has an |R(0)| that is round-off of forces a
+    // billion times larger, which a relative tolerance cannot reach.
+    NewtonStart  start;
+    const double at_start =
+      newton_residual(prescribed, increment, motion, keep_best);
     largest_internal_force =
       std::max(largest_internal_force, assembly.internal_force_size());
-    const double reference = std::max(at_start, 1e-6 * largest_internal_force);
+    start.reference = std::max(at_start, 1e-6 * largest_internal_force);
     // |R| of the system the assembly holds, that of the start.
-    double start_norm = at_start;
+    start.norm = at_start;
     // The tangent predictor keeps force-controlled bodies where the last
     // increment left them (its first correction moves them with the
     // grid); the scaled last increment moves them as it moves the grid.
     if (motion != nullptr && !tangent_start)
       {
         motion->set_values(predicted_place);
-        start_norm = -1; // the held system is not that of the prediction
+        start.norm = -1; // the held system is not that of the prediction
       }
     if (!tangent_start && has_last_increment)
       {
@@ -195,125 +197,174 @@ namespace bsmpm
         // displacement may still leave a larger one: only one ten times
         // larger than that of zero is dropped (cantilever in finite
         // strain: 26 times in step 3).
-        start_norm = remember(with_bodies(assembly.newton_system(
-          update, points, increment, prescribed, &elastic_cells)));
-        if (!(start_norm < 10 * reference))
+        start.norm = newton_residual(prescribed, increment, motion, keep_best);
+        if (!(start.norm < 10 * start.reference))
           {
             increment = 0;
             increment.update_ghost_values();
-            start_norm = -1; // the held system is not that of zero
+            start.norm = -1; // the held system is not that of zero
           }
       }
+    return start;
+  }
+
+
+
+  bool
+  IncrementSolver::symmetric_newton_tangent() const
+  {
+    // A pressure that follows the boundary within the step (finite
+    // strain) has an unsymmetric load stiffness, and so have the
+    // supports' terms in finite strain (the band's mismatch term,
+    // Nitsche's consistency term with dP/df against its symmetric term's
+    // C: doc/finite-strain.md, "Supports in finite strain").
+    const ConstitutiveUpdate &update = *parts.constitutive_update;
+    const auto               &curves = parts.boundary_curves;
+    return update.symmetric_tangent() &&
+           parts.assembly.contact_tangent_symmetric() &&
+           !(update.kinematics() ==
+               ConstitutiveUpdate::Kinematics::finite_strain &&
+             (curves.has_loads() ||
+              curves.has_supports(
+                BoundaryCurve::DirichletMethod::implicit_boundary) ||
+              curves.has_supports(BoundaryCurve::DirichletMethod::nitsche)));
+  }
+
+
+
+  std::pair<double, unsigned int>
+  IncrementSolver::newton_correction(
+    const double                                enough,
+    LinearAlgebra::distributed::Vector<double> &increment,
+    RigidBodyMotion                            *motion,
+    NewtonCorrection                           &last,
+    LinearSolves                               &solves)
+  {
+    TimerOutput::Scope            t(timer, "solve");
+    const BackgroundGrid         &grid     = parts.grid;
+    SystemAssembly               &assembly = parts.assembly;
+    TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
+                                             grid.mpi_communicator());
+    const bool                    symmetric = symmetric_newton_tangent();
+    const auto report = parts.linear_solver.solve(assembly.tangent(),
+                                                  correction,
+                                                  assembly.residual(),
+                                                  grid.dof_handler(),
+                                                  symmetric,
+                                                  enough);
+    assembly.constraints().distribute(correction);
+    solves.add(report);
+    unsigned int linear_iterations = report.iterations;
+    double       motion_size = 0, motion_correction = 0;
+    if (motion != nullptr)
+      {
+        // Block elimination of [K B; G H] [du; dc] = [R; r_c] with the
+        // grid's matrix: K X = R (above), K Y_k = B_k, then
+        // (H - G Y) dc = r_c - G X and du = X - Y dc.
+        const unsigned int m = motion->get_unknowns().size();
+        std::vector<TrilinosWrappers::MPI::Vector> Y(m);
+        for (unsigned int k = 0; k < m; ++k)
+          {
+            Y[k].reinit(grid.locally_owned_dofs(), grid.mpi_communicator());
+            const auto column_report =
+              parts.linear_solver.solve_unchanged(assembly.tangent(),
+                                                  Y[k],
+                                                  motion->column(k),
+                                                  grid.dof_handler(),
+                                                  symmetric);
+            assembly.constraints().distribute(Y[k]);
+            solves.add(column_report);
+            linear_iterations += column_report.iterations;
+          }
+        last.motion = motion->bordered_correction(correction, Y);
+        for (unsigned int k = 0; k < m; ++k)
+          correction.add(-last.motion[k], Y[k]);
+        motion->add(1., last.motion);
+        motion_correction = last.motion.norm_sqr();
+        // The body's motion in the increment, as du is the grid's.
+        Vector<double> moved = motion->values();
+        moved -= motion->start_values();
+        motion_size = moved.norm_sqr();
+      }
+    for (const auto i : grid.locally_owned_dofs())
+      increment(i) += correction(i);
+    increment.update_ghost_values();
+    const double size =
+      std::sqrt(std::pow(increment.l2_norm(), 2) + motion_size);
+    last.grid = correction;
+    return std::make_pair(size > 0 ?
+                            std::sqrt(std::pow(correction.l2_norm(), 2) +
+                                      motion_correction) /
+                              size :
+                            0.,
+                          linear_iterations);
+  }
+
+
+
+  NewtonSolver::Result
+  IncrementSolver::solve_newton(
+    const double                                      delta,
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    LinearAlgebra::distributed::Vector<double>       &increment,
+    LinearSolves                                     &solves,
+    const bool                                        keep_best)
+  {
+    const BackgroundGrid     &grid     = parts.grid;
+    SystemAssembly           &assembly = parts.assembly;
+    const ConstitutiveUpdate &update   = *parts.constitutive_update;
+
+    NewtonCorrection last;
+    // Rigid bodies under a force: their free translation c joins the
+    // unknowns, and its equilibrium r_c the residual (RigidBodyMotion).
+    RigidBodyMotion *motion =
+      parts.contact != nullptr && parts.contact->motion().has_unknowns() ?
+        &parts.contact->motion() :
+        nullptr;
+    prepare_increment();
+    const NewtonStart start =
+      start_newton(delta, prescribed, increment, motion, keep_best);
     const auto residual = [&]() {
-      return remember(with_bodies(assembly.newton_system(
-        update, points, increment, prescribed, &elastic_cells)));
+      return newton_residual(prescribed, increment, motion, keep_best);
     };
     // The direct solver refines a correction only while its residual is
     // above a thousandth of what the convergence test accepts: below that
     // the next iteration sees no difference (the first back-substitution
     // leaves 1e-16 .. 4e-13 of |R_k| on the plastic footing, and a
     // refinement step did not lower it).
-    const double enough  = 1e-3 * parts.newton.residual_tolerance() * reference;
-    const auto   correct = [&]() {
-      TimerOutput::Scope            t(timer, "solve");
-      TrilinosWrappers::MPI::Vector correction(grid.locally_owned_dofs(),
-                                               grid.mpi_communicator());
-      // A pressure that follows the boundary within the step (finite
-      // strain) has an unsymmetric load stiffness, and so have the
-      // supports' terms in finite strain (the band's mismatch term,
-      // Nitsche's consistency term with dP/df against its symmetric term's
-      // C: doc/finite-strain.md, "Supports in finite strain").
-      const auto &curves = parts.boundary_curves;
-      const bool  symmetric =
-        update.symmetric_tangent() && assembly.contact_tangent_symmetric() &&
-        !(update.kinematics() ==
-            ConstitutiveUpdate::Kinematics::finite_strain &&
-          (curves.has_loads() ||
-           curves.has_supports(
-             BoundaryCurve::DirichletMethod::implicit_boundary) ||
-           curves.has_supports(BoundaryCurve::DirichletMethod::nitsche)));
-      const auto report = parts.linear_solver.solve(assembly.tangent(),
-                                                    correction,
-                                                    assembly.residual(),
-                                                    grid.dof_handler(),
-                                                    symmetric,
-                                                    enough);
-      assembly.constraints().distribute(correction);
-      solves.add(report);
-      unsigned int linear_iterations = report.iterations;
-      double       motion_size = 0, motion_correction = 0;
-      if (motion != nullptr)
-        {
-          // Block elimination of [K B; G H] [du; dc] = [R; r_c] with the
-          // grid's matrix: K X = R (above), K Y_k = B_k, then
-          // (H - G Y) dc = r_c - G X and du = X - Y dc.
-          const unsigned int m = motion->get_unknowns().size();
-          std::vector<TrilinosWrappers::MPI::Vector> Y(m);
-          for (unsigned int k = 0; k < m; ++k)
-            {
-              Y[k].reinit(grid.locally_owned_dofs(), grid.mpi_communicator());
-              const auto column_report =
-                parts.linear_solver.solve_unchanged(assembly.tangent(),
-                                                    Y[k],
-                                                    motion->column(k),
-                                                    grid.dof_handler(),
-                                                    symmetric);
-              assembly.constraints().distribute(Y[k]);
-              solves.add(column_report);
-              linear_iterations += column_report.iterations;
-            }
-          last_motion_correction = motion->bordered_correction(correction, Y);
-          for (unsigned int k = 0; k < m; ++k)
-            correction.add(-last_motion_correction[k], Y[k]);
-          motion->add(1., last_motion_correction);
-          motion_correction = last_motion_correction.norm_sqr();
-          // The body's motion in the increment, as du is the grid's.
-          Vector<double> moved = motion->values();
-          moved -= motion->start_values();
-          motion_size = moved.norm_sqr();
-        }
-      for (const auto i : grid.locally_owned_dofs())
-        increment(i) += correction(i);
-      increment.update_ghost_values();
-      const double size =
-        std::sqrt(std::pow(increment.l2_norm(), 2) + motion_size);
-      last_correction = correction;
-      return std::make_pair(size > 0 ?
-                              std::sqrt(std::pow(correction.l2_norm(), 2) +
-                                        motion_correction) /
-                                size :
-                              0.,
-                            linear_iterations);
+    const double enough =
+      1e-3 * parts.newton.residual_tolerance() * start.reference;
+    const auto correct = [&]() {
+      return newton_correction(enough, increment, motion, last, solves);
     };
     const auto step_back = [&](const double alpha) {
       // From x + a dx to x + (a - alpha) dx.
       for (const auto i : grid.locally_owned_dofs())
-        increment(i) -= alpha * last_correction(i);
+        increment(i) -= alpha * last.grid(i);
       increment.update_ghost_values();
       if (motion != nullptr)
-        motion->add(-alpha, last_motion_correction);
+        motion->add(-alpha, last.motion);
     };
     // dx . R(x): the slope of the potential along dx, for the line search
     // (with dc . r_c: the applied force on a body is a dead load, whose
     // potential is -F . c).
     const auto slope = [&]() {
-      return last_correction * assembly.residual() +
-             (motion != nullptr ?
-                last_motion_correction * motion->get_residual() :
-                0.);
+      return last.grid * assembly.residual() +
+             (motion != nullptr ? last.motion * motion->get_residual() : 0.);
     };
 
     // Small strain with a symmetric tangent: the potential is convex and
     // the tangent positive, so a correction that does not descend is
     // round-off (NewtonSolver::solve).
-    const bool positive_tangent = small_strain && update.symmetric_tangent() &&
-                                  assembly.contact_tangent_symmetric();
-    NewtonSolver::Result result = parts.newton.solve(reference,
+    const bool positive_tangent =
+      update.kinematics() == ConstitutiveUpdate::Kinematics::small_strain &&
+      update.symmetric_tangent() && assembly.contact_tangent_symmetric();
+    NewtonSolver::Result result = parts.newton.solve(start.reference,
                                                      residual,
                                                      correct,
                                                      step_back,
                                                      slope,
-                                                     start_norm,
+                                                     start.norm,
                                                      positive_tangent);
     // Which Gauss points of the curves touch a rigid body is fixed within
     // the iterations, and so are the augmented Lagrangian's multipliers
@@ -323,7 +374,7 @@ namespace bsmpm
            parts.contact->after_convergence(
              grid, assembly.kernel(), increment, prescribed))
       {
-        NewtonSolver::Result more = parts.newton.solve(reference,
+        NewtonSolver::Result more = parts.newton.solve(start.reference,
                                                        residual,
                                                        correct,
                                                        step_back,

@@ -15,7 +15,9 @@
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 
+#include <array>
 #include <memory>
+#include <vector>
 
 namespace bsmpm
 {
@@ -384,6 +386,15 @@ namespace bsmpm
                        Tensor<4, 2>                  &A) const;
 
   private:
+    using Property = MaterialPoints::Property;
+
+    /** The @p n_points points of a cell as cell_system() takes them. */
+    static void
+    gather_points(
+      const Particles::ParticleHandler<2>::particle_iterator_range &range,
+      const unsigned int                                            n_points,
+      std::vector<PointView>                                       &views);
+
     /** How the strain of the points of one cell is computed. */
     struct CellStrain
     {
@@ -494,13 +505,104 @@ namespace bsmpm
      * engineering xy) of the point with properties @p props
      * (ConstitutiveModel::plane_strain_update(): the stress, the Voigt
      * tangent only if the point yields, which it returns); @p state
-     * returns the updated state. */
+     * returns the updated state. Inline (below): called for every point of
+     * every Newton system, where the call cost about as much as filling the
+     * state. */
     bool
     respond(const ArrayView<const double> &props,
             const Tensor<1, 4>            &de,
             ConstitutiveState             &state,
             std::array<double, 4>         &stress,
             std::array<double, 16>        &tangent) const;
+
+    /** The stored elastic strain of @p props plus the strain increment
+     * @p de (xx, yy, zz, engineering xy) into @p e: the trial strain of
+     * small strain. Inline (below). */
+    static void
+    trial_strain(const ArrayView<const double> &props,
+                 const Tensor<1, 4>            &de,
+                 SymmetricTensor<2, 3>         &e);
+
+    /** Small strain: the stress @p sigma (xx, yy, zz, xy) of the elastic
+     * material at the stored elastic strain of @p props plus @p de,
+     * whatever the point's state (the elastic layer of a support's band in
+     * cell_system()). */
+    void
+    elastic_stress(const ArrayView<const double> &props,
+                   const Tensor<1, 4>            &de,
+                   std::array<double, 4>         &sigma) const;
+
+    /**
+     * Finite strain: adds the point at @p st with properties @p props and
+     * weight @p w to the force @p f and the tangent @p K of its cell for
+     * the local increment @p d (doc/finite-strain.md), with @p state as
+     * work space; @p yielded says whether it yields. False, and nothing
+     * added, if the increment inverts the point (det f <= 0).
+     */
+    bool
+    add_finite_strain_point(const Q1CellKernel              &kernel,
+                            const CellStrain                &strain,
+                            const Point<2>                  &st,
+                            const ArrayView<const double>   &props,
+                            const double                     w,
+                            const Q1CellKernel::LocalVector &d,
+                            ConstitutiveState               &state,
+                            FullMatrix<double>              &K,
+                            Vector<double>                  &f,
+                            bool                            &yielded) const;
+
+    /**
+     * The only point with weight of @p cell_points where cell_system()
+     * integrates the cell by the four points of the exact moments
+     * @p exact_moments with that point's state (finite strain with the
+     * cut-cell quadrature); nullptr otherwise.
+     *
+     * One point in a cell (one point per cell, or a cut cell the body has
+     * just entered): a one-point rule holds none of the cell's hourglass
+     * modes (their strain vanishes at the point), so Newton's tangent is
+     * singular and the curves' tracking points, which the hourglass modes
+     * move, wander (doc/finite-strain.md). The four points of
+     * PointMoments::exact_four_point_rule() with the one point's state are
+     * exact for a homogeneous state (the integrand is affine), and their
+     * tangent holds every deformation mode of the cell.
+     */
+    const PointView *
+    single_point(const std::vector<PointView> &cell_points,
+                 const CellMoments            *exact_moments) const;
+
+    /** At most two virtual points of a cell: reference coordinates and
+     * weights (a fixed array: cell_system() makes them for every cut cell
+     * of every Newton system). */
+    struct VirtualPoints
+    {
+      std::array<Point<2>, 2> st;
+      std::array<double, 2>   weight;
+      unsigned int            n = 0;
+
+      void
+      add(const Point<2> &point, const double w)
+      {
+        st[n]     = point;
+        weight[n] = w;
+        ++n;
+      }
+    };
+
+    /** The virtual points that complete the moments of the points'
+     * weights W, Ws, Wt to the cell's exact moments @p exact_moments, if
+     * cell_system() completes them: the exact area at the exact centroid,
+     * minus W at the points' centroid. */
+    VirtualPoints
+    completion_points(const CellMoments *exact_moments,
+                      const double       W,
+                      const double       Ws,
+                      const double       Wt) const;
+
+    /** The mean properties of @p cell_points, weighted as they integrate
+     * (their weights sum to @p W): the state of cell_system()'s virtual
+     * points. */
+    std::vector<double>
+    mean_state(const std::vector<PointView> &cell_points, const double W) const;
 
     /** The weight a point of @p props integrates with: its fitted weight
      * with the cut-cell quadrature, else its volume; zero for a point that
@@ -520,6 +622,34 @@ namespace bsmpm
     /** See support_stiffness_ratios(). */
     mutable LinearAlgebra::distributed::Vector<double> stiffness_ratio;
   };
+
+
+
+  inline bool
+  ConstitutiveUpdate::respond(const ArrayView<const double> &props,
+                              const Tensor<1, 4>            &de,
+                              ConstitutiveState             &state,
+                              std::array<double, 4>         &stress,
+                              std::array<double, 16>        &tangent) const
+  {
+    trial_strain(props, de, state.elastic_strain);
+    state.equivalent_plastic_strain = props[Property::plastic_strain];
+    return model.plane_strain_update(state, stress, tangent);
+  }
+
+
+
+  inline void
+  ConstitutiveUpdate::trial_strain(const ArrayView<const double> &props,
+                                   const Tensor<1, 4>            &de,
+                                   SymmetricTensor<2, 3>         &e)
+  {
+    e[0][0] = props[Property::elastic_strain] + de[0];
+    e[1][1] = props[Property::elastic_strain + 1] + de[1];
+    e[2][2] = props[Property::elastic_strain + 2] + de[2];
+    e[0][1] = props[Property::elastic_strain + 3] + de[3] / 2;
+    e[0][2] = e[1][2] = 0;
+  }
 } // namespace bsmpm
 
 #endif

@@ -71,6 +71,36 @@ namespace bsmpm
     solve(Epetra_MultiVector &x, const Epetra_MultiVector &b);
 
   private:
+    /** The matrix's structure as factorize() finds it (defined in the
+     * source). */
+    struct Structure;
+
+    /** factorize(), steps 1 and 2: the interface rows and the interface
+     * numbers (n_interface); collective. */
+    void
+    find_interface(Structure &structure);
+
+    /** factorize(), step 3: the local entries as pairs of codes, those sent
+     * to and received from other processes, the interior (n_interior);
+     * collective. */
+    void
+    collect_entries(Structure &structure);
+
+    /** factorize(), steps 4 and 5: the local unknowns (local_index,
+     * touched) and the local matrix's triplets. */
+    void
+    number_local_unknowns(const Structure &structure);
+
+    /** The place among the local unknowns of an entry's @p code (an
+     * interior index, or -1 - an interface number). */
+    int
+    local_of(const int code) const;
+
+    /** factorize(), step 6: the analyses of the local matrix and of S;
+     * collective. */
+    DirectSolver::Status
+    analyse();
+
     /** The values of @p matrix for the local factorisation (own entries
      * and those other processes send), in the order of the triplets. */
     bool

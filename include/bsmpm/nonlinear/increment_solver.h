@@ -9,6 +9,7 @@
 #include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/assembly/system_assembly.h>
 #include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/contact/rigid_body_motion.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/linear_algebra/linear_solver.h>
 #include <bsmpm/nonlinear/displacement_control.h>
@@ -17,6 +18,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace bsmpm
 {
@@ -179,6 +181,66 @@ namespace bsmpm
      * of prepare_elastic_cells(). */
     void
     prepare_increment();
+
+    /** Where solve_newton()'s iterations start. */
+    struct NewtonStart
+    {
+      /** The scale of the tolerance: |R(0)|, but not below a millionth of
+       * the largest internal force of the run. */
+      double reference = 0;
+      /** |R| of the system the assembly holds (that of the start), or -1
+       * if it holds another one. */
+      double norm = -1;
+    };
+
+    /**
+     * The predictor of solve_newton() (Nonlinear solver/Predictor,
+     * doc/newton.md) for the load increment @p delta: the start
+     * @p increment, the bodies' places in @p motion (if any), and the
+     * scale of the tolerance.
+     */
+    NewtonStart
+    start_newton(const double                                      delta,
+                 const LinearAlgebra::distributed::Vector<double> *prescribed,
+                 LinearAlgebra::distributed::Vector<double>       &increment,
+                 RigidBodyMotion                                  *motion,
+                 const bool                                        keep_best);
+
+    /** Assembles the Newton system at @p increment and returns |(R, r_c)|
+     * (r_c the equilibrium of the bodies of @p motion, if any); with
+     * @p keep_best, remembers the iterate if it is the best so far. */
+    double
+    newton_residual(
+      const LinearAlgebra::distributed::Vector<double> *prescribed,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const RigidBodyMotion                            *motion,
+      const bool                                        keep_best);
+
+    /** Whether the Newton system's tangent is symmetric (the material's,
+     * the contact's, and no follower load or support in finite strain). */
+    bool
+    symmetric_newton_tangent() const;
+
+    /** The last Newton correction of the grid and of the bodies. */
+    struct NewtonCorrection
+    {
+      TrilinosWrappers::MPI::Vector grid;
+      Vector<double>                motion;
+    };
+
+    /**
+     * Solves the Newton system for the correction (with the bodies of
+     * @p motion by block elimination), adds it to @p increment and keeps it
+     * in @p last; the linear solver may stop refining below @p enough.
+     * Returns the size of the correction relative to the increment, and
+     * the linear iterations.
+     */
+    std::pair<double, unsigned int>
+    newton_correction(const double                                enough,
+                      LinearAlgebra::distributed::Vector<double> &increment,
+                      RigidBodyMotion                            *motion,
+                      NewtonCorrection                           &last,
+                      LinearSolves                               &solves);
   };
 } // namespace bsmpm
 

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <functional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace bsmpm
@@ -354,6 +356,10 @@ namespace bsmpm
     property_names(const unsigned int n_properties = Property::n_properties);
 
   private:
+    /** "(x, y)", for messages. */
+    static std::string
+    format_point(const Point<2> &p);
+
     /** Inserts one point if its cell is locally owned; returns whether. */
     bool
     insert(const Point<2>             &position,
@@ -365,6 +371,16 @@ namespace bsmpm
     std::pair<DoFHandler<2>::active_cell_iterator, Point<2>>
     boundary_source(const DoFHandler<2>::active_cell_iterator &cell,
                     const Point<2>                            &st) const;
+
+    /** The nodal values of @p increment (plus @p prescribed, if given) of
+     * the cell that boundary_source() finds for a point at @p st of
+     * @p cell, and the point's local coordinates in it. */
+    std::pair<Q1CellKernel::LocalVector, Point<2>>
+    boundary_increment(
+      const DoFHandler<2>::active_cell_iterator        &cell,
+      const Point<2>                                   &st,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
 
     /** Whether each owned and ghost cell holds material, by
      * active_cell_index() (find_material_cells()). */

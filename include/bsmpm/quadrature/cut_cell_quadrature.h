@@ -114,6 +114,42 @@ namespace bsmpm
     }
 
   private:
+    /** What correct_cell_moments() did on this process. */
+    struct FitCounts
+    {
+      unsigned int n_cut = 0;
+      /** Cut cells by the number of moments their points' weights fit. */
+      unsigned int n_fitted[7] = {0, 0, 0, 0, 0, 0, 0};
+      /** Cells with points that the geometry finds empty. */
+      unsigned int n_outside = 0;
+      /** Full cells whose points' weights had to be fitted. */
+      unsigned int n_full_fit = 0;
+    };
+
+    /**
+     * The consistent moments @p m of the locally owned @p cell (on entry
+     * the points' own) and its points' weights; false, @p m holding the
+     * exact volume moments alone, for a cell of the body without points
+     * (fill_cells_without_points()).
+     */
+    bool
+    fit_cell(MaterialPoints                            &points,
+             const BackgroundGrid                      &grid,
+             const DoFHandler<2>::active_cell_iterator &cell,
+             CellMoments                               &m,
+             FitCounts                                 &n) const;
+
+    /** The stress moments of the cells @p cells of the body without
+     * points (collective): the stress of the neighbourhood at the
+     * centroid of K ∩ Ω, from a lumped projection of the points' stresses
+     * onto the grid's vertices. */
+    void
+    fill_cells_without_points(
+      const MaterialPoints                            &points,
+      const BackgroundGrid                            &grid,
+      const std::vector<DoFHandler<2>::cell_iterator> &cells,
+      std::vector<CellMoments>                        &moments) const;
+
     bool                          use_moment_fitting = true;
     bool                          is_active          = false;
     std::string                   why_off;

@@ -1,0 +1,214 @@
+#include <deal.II/base/mpi.h>
+
+#include <bsmpm/points/material_points.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+// MaterialPoints, part 3: the tracked points (the boundary curves' points),
+// whose positions and states every process gathers, and the tracking points
+// inserted and removed as the curves' points are respaced.
+
+namespace bsmpm
+{
+  void
+  MaterialPoints::track(const std::vector<types::particle_index> &ids)
+  {
+    is_tracked.assign(next_id, false);
+    tracked_slots.clear();
+    n_tracked_slots = ids.size();
+    // From the last slot to the first: an id listed twice keeps its last.
+    for (unsigned int slot = ids.size(); slot-- > 0;)
+      {
+        AssertThrow(ids[slot] < next_id,
+                    ExcMessage("Tracked point id " + std::to_string(ids[slot]) +
+                               " does not exist."));
+        if (!is_tracked[ids[slot]])
+          {
+            is_tracked[ids[slot]] = true;
+            tracked_slots.emplace_back(ids[slot], slot);
+          }
+      }
+    std::sort(tracked_slots.begin(), tracked_slots.end());
+    record_tracked_points();
+  }
+
+
+
+  void
+  MaterialPoints::record_tracked_points()
+  {
+    tracked_local.clear();
+    for (const auto &particle : particles)
+      record_if_tracked(particle.get_id(),
+                        particle.get_location(),
+                        particle.get_properties());
+  }
+
+
+
+  std::vector<std::vector<double>>
+  MaterialPoints::tracked_properties(
+    const std::vector<unsigned int> &slots) const
+  {
+    // Slot -> its places in the request (a slot may be asked for twice).
+    std::map<unsigned int, std::vector<unsigned int>> wanted;
+    for (unsigned int i = 0; i < slots.size(); ++i)
+      wanted[slots[i]].push_back(i);
+    // (slot, properties...) of the wanted points this process owns.
+    std::vector<double> local;
+    for (const auto &particle : particles)
+      {
+        const unsigned int slot = tracked_slot(particle.get_id());
+        if (slot == numbers::invalid_unsigned_int || wanted.count(slot) == 0)
+          continue;
+        local.push_back(slot);
+        const auto props = particle.get_properties();
+        local.insert(local.end(), props.begin(), props.end());
+      }
+    const auto all = Utilities::MPI::all_gather(grid.mpi_communicator(), local);
+    std::vector<std::vector<double>> result(slots.size());
+    const unsigned int               stride = n_point_properties + 1;
+    for (const auto &part : all)
+      for (std::size_t start = 0; start + stride <= part.size();
+           start += stride)
+        for (const unsigned int i :
+             wanted[static_cast<unsigned int>(part[start])])
+          result[i].assign(part.begin() + start + 1,
+                           part.begin() + start + stride);
+    for (unsigned int i = 0; i < slots.size(); ++i)
+      AssertThrow(result[i].size() == n_point_properties,
+                  ExcMessage("The tracked boundary point in slot " +
+                             std::to_string(slots[i]) + " was lost."));
+    return result;
+  }
+
+
+
+  std::vector<unsigned int>
+  MaterialPoints::add_tracked_points(
+    const std::vector<Point<2>>            &positions,
+    const std::vector<std::vector<double>> &properties)
+  {
+    AssertThrow(positions.size() == properties.size(), ExcInternalError());
+    neighbourhood_current = false;
+    std::vector<unsigned int> slots;
+    for (unsigned int i = 0; i < positions.size(); ++i)
+      {
+        const Point<2> &p = positions[i];
+        AssertThrow(grid.contains(p),
+                    ExcMessage("A boundary point inserted at " +
+                               format_point(p) +
+                               " lies outside the background grid."));
+        AssertThrow(properties[i].size() == n_point_properties,
+                    ExcInternalError());
+        const types::particle_index id   = next_id++;
+        const unsigned int          slot = n_tracked_slots++;
+        slots.push_back(slot);
+        is_tracked.resize(next_id, false);
+        is_tracked[id] = true;
+        // Ids grow, so the list stays sorted by id.
+        tracked_slots.emplace_back(id, slot);
+        const auto ij   = grid.cell_index(p);
+        const auto cell = grid.locally_owned_cell(ij);
+        if (cell == grid.dof_handler().end())
+          continue;
+        std::vector<double> props = properties[i];
+        props[Property::volume]   = 0.;
+        particles.insert_particle(p,
+                                  grid.local_coordinates(p, ij),
+                                  id,
+                                  cell,
+                                  ArrayView<const double>(props.data(),
+                                                          props.size()));
+      }
+    particles.update_cached_numbers();
+    record_tracked_points();
+    return slots;
+  }
+
+
+
+  void
+  MaterialPoints::remove_tracked_points(const std::vector<unsigned int> &slots)
+  {
+    neighbourhood_current = false;
+    std::set<unsigned int> removed(slots.begin(), slots.end());
+    std::vector<Particles::ParticleHandler<2>::particle_iterator> doomed;
+    for (auto particle = particles.begin(); particle != particles.end();
+         ++particle)
+      if (removed.count(tracked_slot(particle->get_id())) > 0)
+        doomed.push_back(particle);
+    particles.remove_particles(doomed);
+    for (auto &[id, slot] : tracked_slots)
+      if (removed.count(slot) > 0)
+        is_tracked[id] = false;
+    tracked_slots.erase(std::remove_if(tracked_slots.begin(),
+                                       tracked_slots.end(),
+                                       [&](const auto &entry) {
+                                         return removed.count(entry.second) > 0;
+                                       }),
+                        tracked_slots.end());
+    particles.update_cached_numbers();
+    record_tracked_points();
+  }
+
+
+
+  void
+  MaterialPoints::record_if_tracked(const types::particle_index   id,
+                                    const Point<2>               &x,
+                                    const ArrayView<const double> properties)
+  {
+    const unsigned int slot = tracked_slot(id);
+    if (slot == numbers::invalid_unsigned_int)
+      return;
+    std::array<double, 12> state{{double(slot),
+                                  x[0],
+                                  x[1],
+                                  properties[Property::stress],
+                                  properties[Property::stress + 1],
+                                  properties[Property::stress + 2]}};
+    state[11] = 1.; // det F
+    if (properties.size() >= Property::n_properties_inelastic)
+      {
+        for (unsigned int k = 0; k < 4; ++k)
+          state[6 + k] = properties[Property::elastic_strain + k];
+        state[10] = properties[Property::plastic_strain];
+        state[11] = properties[Property::det_F];
+      }
+    tracked_local.push_back(state);
+  }
+
+
+
+  void
+  MaterialPoints::tracked_states(std::vector<Point<2>>     &positions,
+                                 std::vector<Voigt>        &stresses,
+                                 std::vector<TrackedState> *states) const
+  {
+    const auto all =
+      Utilities::MPI::all_gather(grid.mpi_communicator(), tracked_local);
+    std::size_t n = 0;
+    for (const auto &part : all)
+      n += part.size();
+    AssertThrow(n == tracked_slots.size(),
+                ExcMessage("A tracked boundary point was lost."));
+    positions.assign(n_tracked_slots, Point<2>());
+    stresses.assign(n_tracked_slots, Voigt());
+    if (states != nullptr)
+      states->assign(n_tracked_slots, TrackedState{{0., 0., 0., 0., 0., 1.}});
+    for (const auto &part : all)
+      for (const auto &state : part)
+        {
+          const auto slot = static_cast<std::size_t>(state[0]);
+          AssertThrow(slot < n_tracked_slots,
+                      ExcMessage("A tracked boundary point was lost."));
+          positions[slot] = Point<2>(state[1], state[2]);
+          stresses[slot]  = Voigt({state[3], state[4], state[5]});
+          if (states != nullptr)
+            std::copy(state.begin() + 6, state.end(), (*states)[slot].begin());
+        }
+  }
+} // namespace bsmpm
