@@ -243,9 +243,15 @@ namespace bsmpm
       if (values.empty())
         return;
       out << '\n' << title << '\n';
+      // The names in a column as wide as the longest and a space (at
+      // least 24), so that no name runs into its value.
+      std::size_t width = 24;
+      for (const auto &[key, value] : values)
+        if (key.find("_at_") == std::string::npos)
+          width = std::max(width, key.size() + 1);
       for (const auto &[key, value] : values)
         if (key.find("_at_") == std::string::npos) // places: in the JSON only
-          out << "  " << std::left << std::setw(24) << key << std::right
+          out << "  " << std::left << std::setw(width) << key << std::right
               << std::scientific << std::setprecision(6) << value << '\n';
     };
     print("errors", errors);
