@@ -192,8 +192,7 @@ namespace bsmpm
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
     run_summary.load_steps = n_load_steps;
-    load_stepper->initialize(!constitutive_model->is_linear() ||
-                               finite_strain(),
+    load_stepper->initialize(!constitutive_model->is_linear(),
                              checkpoint.resuming());
   }
 

@@ -36,7 +36,9 @@ namespace bsmpm
                       "F_high). An end that the bisection never tries is "
                       "tried at the end, so that the bracket reported is "
                       "always between a factor that held and one that "
-                      "collapsed.");
+                      "collapsed; where the factor of safety lies outside "
+                      "the Bracket, its end is halved or doubled until it "
+                      "does (down to 1/64, up to 64).");
     prm.declare_entry("Tolerance",
                       "0.01",
                       Patterns::Double(1e-6, 1),
@@ -158,36 +160,77 @@ namespace bsmpm
       return t.collapsed;
     };
 
-    double low = bracket[0], high = bracket[1];
-    bool   low_tried = false, high_tried = false;
+    // The bisection keeps a factor that held (low) and one that collapsed
+    // (high). An end of the Bracket that the bisection never tried is tried
+    // at the end; one on the wrong side (the scene collapses at F_low: its
+    // factor of safety is below the Bracket; it holds at F_high) is moved
+    // outwards, halved or doubled, and the bisection goes on, so that the
+    // bracket reported always lies between a factor that held and one that
+    // collapsed.
+    constexpr double lowest = 1. / 64, highest = 64;
+    double           low = bracket[0], high = bracket[1];
+    bool             low_tried = false, high_tried = false;
+    const auto       bisect = [&]() {
+      while (high - low > tolerance * low)
+        {
+          const double factor = (low + high) / 2;
+          if (trial(factor))
+            {
+              high       = factor;
+              high_tried = true;
+            }
+          else
+            {
+              low       = factor;
+              low_tried = true;
+            }
+        }
+    };
     try
       {
-        while (high - low > tolerance * low)
+        bisect();
+        while (!low_tried)
           {
-            const double factor = (low + high) / 2;
-            if (trial(factor))
+            if (!trial(low))
               {
-                high       = factor;
-                high_tried = true;
-              }
-            else
-              {
-                low       = factor;
                 low_tried = true;
+                break;
               }
+            AssertThrow(low > lowest,
+                        ExcMessage(
+                          "Strength reduction: the scene collapses even "
+                          "with its strength multiplied by " +
+                          std::to_string(1 / low) +
+                          ": it cannot stand whatever its strength. Check "
+                          "its loads and supports."));
+            high       = low;
+            high_tried = true;
+            low /= 2;
+            pcout << "  the factor of safety is below the Bracket: F = " << high
+                  << " collapses, trying down to F = " << low << "\n";
+            bisect();
           }
-        AssertThrow(low_tried || !trial(low),
-                    ExcMessage("Strength reduction: the scene collapses "
-                               "even at the lower end of the Bracket, F = " +
-                               std::to_string(low) +
-                               ": the factor of safety is below it; lower "
-                               "the Bracket."));
-        AssertThrow(high_tried || trial(high),
-                    ExcMessage("Strength reduction: the scene holds even "
-                               "at the upper end of the Bracket, F = " +
-                               std::to_string(high) +
-                               ": the factor of safety is above it; raise "
-                               "the Bracket."));
+        while (!high_tried)
+          {
+            if (trial(high))
+              {
+                high_tried = true;
+                break;
+              }
+            AssertThrow(high < highest,
+                        ExcMessage(
+                          "Strength reduction: the scene holds even with its "
+                          "strength divided by " +
+                          std::to_string(high) +
+                          ": it does not fail by loss of strength (check "
+                          "that its material yields)."));
+            low       = high;
+            low_tried = true;
+            high *= 2;
+            pcout << "  the factor of safety is above the Bracket: F = " << low
+                  << " holds, trying up to F = " << high << "\n";
+            bisect();
+          }
       }
     catch (const std::exception &e)
       {

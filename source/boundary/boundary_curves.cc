@@ -161,13 +161,30 @@ namespace bsmpm
                           "has no band and a condition number that no band "
                           "width raises, the implicit boundary method is the "
                           "paper's (doc/implicit-boundary.md).");
+        prm.declare_entry(
+          "Curve position",
+          "region edge",
+          Patterns::Selection(
+            "region edge|through the points|through halved points"),
+          "material points: where the curve runs. region edge (the "
+          "default): along the body region's edge, through one tracking "
+          "point beside each point of the outer layer (and the edge's "
+          "corners); the points' volumes fill the body up to the curve, so "
+          "cut cells are integrated exactly, whatever the number of points "
+          "per cell. through the points: through the outer layer of points "
+          "themselves (the paper's cantilever, Sec. 4.2); their volumes "
+          "reach half a point spacing beyond the curve, so the curve is not "
+          "the body's boundary, cells are integrated by their points alone, "
+          "and fewer than about two points per cell in a direction may leave "
+          "the system singular. through halved points: through the points, "
+          "with their volumes halved (a quarter at a corner point of two "
+          "such curves) so that they stand for the body up to the curve "
+          "(the paper's patch test, Sec. 4.1.2).");
         prm.declare_entry("Halve point volumes",
                           "false",
                           Patterns::Bool(),
-                          "material points: halve the volume of the curve's "
-                          "points, so that the outer layer of points stands "
-                          "for the body up to the curve (a corner point on "
-                          "two such curves keeps a quarter).");
+                          "material points: true is Curve position = "
+                          "through halved points.");
         prm.declare_entry("Trim material points",
                           "false",
                           Patterns::Bool(),
@@ -228,7 +245,6 @@ namespace bsmpm
             for (const auto i : ParameterTools::get_unsigned(prm, "Corners"))
               curve.corners.push_back(i);
             curve.trims_material_points = prm.get_bool("Trim material points");
-            curve.halve_point_volumes   = prm.get_bool("Halve point volumes");
             curve.dirichlet_method =
               prm.get("Dirichlet method") == "nitsche" ?
                 BoundaryCurve::DirichletMethod::nitsche :
@@ -239,8 +255,15 @@ namespace bsmpm
                 curve.conditions.push_back(
                   CurveCondition::parse(prm.get(name), where + "/" + name));
 
-            source.edge     = Utilities::trim(prm.get("Edge"));
-            source.n_points = prm.get_integer("Number of points");
+            source.edge                = Utilities::trim(prm.get("Edge"));
+            source.n_points            = prm.get_integer("Number of points");
+            const std::string position = prm.get("Curve position");
+            source.outer_layer         = prm.get_bool("Halve point volumes") ||
+                                     position == "through halved points" ?
+                                           OuterLayer::through_halved_points :
+                                         position == "through the points" ?
+                                           OuterLayer::through_points :
+                                           OuterLayer::region_edge;
             if (source.kind == "coordinates")
               source.positions = parse_coordinates(prm.get("Coordinates"),
                                                    where + "/Coordinates");
@@ -446,10 +469,10 @@ namespace bsmpm
       reason = "no boundary curves";
     for (unsigned int c = 0; c < curves.size() && reason.empty(); ++c)
       if (sources[c].kind == "material points" &&
-          !curves[c].halve_point_volumes)
+          sources[c].outer_layer == OuterLayer::through_points)
         reason = curves[c].name +
                  " runs through material points whose volumes reach "
-                 "beyond it ('Halve point volumes' makes it the boundary)";
+                 "beyond it (Curve position = through the points)";
     if (!reason.empty())
       return false;
 

@@ -21,7 +21,7 @@ namespace bsmpm
       {
         // Points of the outer layer of material points carry volume:
         // they cannot be made or dropped here.
-        if (sources[c].kind == "material points")
+        if (sources[c].through_material_points())
           continue;
         BoundaryCurve                   &curve = curves[c];
         const BoundaryPointSpacing::Plan plan  = point_spacing.plan(curve, h);

@@ -12,6 +12,73 @@
 
 namespace bsmpm
 {
+  namespace
+  {
+    /**
+     * The chain along a straight-sided part @p edge of the region's boundary
+     * beside the outer layer of material points at @p layer (ordered along
+     * it): each point's nearest point on the edge, and the edge's corners in
+     * place of the nearest of them (an open edge: its two ends in place of
+     * the layer's first and last), so that the curve bounds exactly the
+     * region that the points' volumes fill.
+     */
+    std::vector<Point<2>>
+    beside_outer_layer(const std::vector<Point<2>>      &layer,
+                       const BodyRegion::BoundaryPoints &edge)
+    {
+      const std::vector<Point<2>> &corners = edge.points;
+      const unsigned int           n_sides =
+        edge.closed ? corners.size() : corners.size() - 1;
+      std::vector<Point<2>> chain;
+      for (const auto &q : layer)
+        {
+          Point<2> nearest;
+          double   distance = std::numeric_limits<double>::max();
+          for (unsigned int k = 0; k < n_sides; ++k)
+            {
+              const Point<2> p0    = corners[k],
+                             p1    = corners[(k + 1) % corners.size()];
+              const Tensor<1, 2> d = p1 - p0;
+              const Point<2>     x =
+                p0 + std::clamp((q - p0) * d / (d * d), 0., 1.) * d;
+              if (x.distance(q) < distance)
+                {
+                  distance = x.distance(q);
+                  nearest  = x;
+                }
+            }
+          chain.push_back(nearest);
+        }
+      if (!edge.closed)
+        {
+          if (chain.size() < 2)
+            return corners;
+          chain.front() = corners.front();
+          chain.back()  = corners.back();
+          return chain;
+        }
+      std::vector<bool> is_corner(chain.size(), false);
+      for (const auto &corner : corners)
+        {
+          unsigned int nearest = numbers::invalid_unsigned_int;
+          for (unsigned int k = 0; k < chain.size(); ++k)
+            if (!is_corner[k] &&
+                (nearest == numbers::invalid_unsigned_int ||
+                 chain[k].distance(corner) < chain[nearest].distance(corner)))
+              nearest = k;
+          AssertThrow(nearest != numbers::invalid_unsigned_int,
+                      ExcMessage("Boundary curves: the outer layer of "
+                                 "material points has fewer points than the "
+                                 "edge has corners."));
+          chain[nearest]     = corner;
+          is_corner[nearest] = true;
+        }
+      return chain;
+    }
+  } // namespace
+
+
+
   void
   BoundaryCurves::enclose_body_region(ParameterHandler &prm,
                                       const BodyRegion &region,
@@ -64,7 +131,7 @@ namespace bsmpm
     std::set<std::string> used;
     for (const auto &source : sources)
       {
-        if (source.kind != "region edge")
+        if (!source.along_region_edge())
           return;
         used.insert(source.edge);
       }
@@ -214,6 +281,18 @@ namespace bsmpm
             const auto edge = region.boundary_points(source.edge, 2);
             ids[c]          = points.outer_layer(edge.points, edge.closed);
             curve.closed    = edge.closed;
+            if (source.outer_layer == OuterLayer::region_edge)
+              {
+                // The chain on the edge beside the layer: tracking points,
+                // as along any region edge.
+                curve.positions =
+                  beside_outer_layer(points.locations(ids[c]), edge);
+                for (unsigned int k = 0; k < curve.positions.size(); ++k)
+                  for (const auto &corner : edge.points)
+                    if (edge.closed && curve.positions[k] == corner)
+                      curve.corners.push_back(k);
+                ids[c] = points.add_tracking_points(curve.positions);
+              }
           }
         else
           ids[c] = points.add_tracking_points(curve.positions);
@@ -231,7 +310,8 @@ namespace bsmpm
     // keep half their volume on a side, a quarter at a corner (paper
     // Sec. 4.1.2).
     for (unsigned int c = 0; c < curves.size(); ++c)
-      if (curves[c].halve_point_volumes)
+      if (sources[c].kind == "material points" &&
+          sources[c].outer_layer == OuterLayer::through_halved_points)
         points.scale_volumes(ids[c], 0.5);
     return tracked;
   }

@@ -307,7 +307,10 @@ namespace bsmpm
     if (report.method.empty())
       {
         // MUMPS is the fastest direct solver in Debian's Trilinos; KLU
-        // where it is missing or fails.
+        // where it is missing or fails for want of memory or otherwise, with
+        // the reason in the step table. A system that MUMPS finds singular
+        // (null pivots) is singular: KLU would factorise it with a pivot of
+        // round-off and return displacements without meaning.
         direct_factors   = std::make_unique<DirectSolver>();
         direct_matrix    = &A;
         direct_structure = structure;
@@ -315,11 +318,16 @@ namespace bsmpm
         mumps            = direct_factors->factorize(A, "MUMPS", symmetric);
         if (mumps == DirectSolver::Status::success)
           report.method = "direct (MUMPS)";
-        else
+        else if (mumps != DirectSolver::Status::singular)
           {
             klu = direct_factors->factorize(A, "Amesos_Klu", symmetric);
             if (klu == DirectSolver::Status::success)
-              report.method = "direct (KLU)";
+              report.method =
+                mumps == DirectSolver::Status::unavailable ?
+                  "direct (KLU)" :
+                mumps == DirectSolver::Status::out_of_memory ?
+                  "direct (KLU, MUMPS out of memory)" :
+                  "direct (KLU, MUMPS failed)";
           }
         direct_method = report.method;
       }

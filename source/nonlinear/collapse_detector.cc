@@ -18,7 +18,9 @@ namespace bsmpm
       "after the allowed step cuts, or converges with a flexibility ratio "
       "above 'Flexibility ratio'. The run then ends normally (exit code 0) "
       "and summary.json gives limit_load_factor, its bracket and the reason. "
-      "'auto': on for a nonlinear material unless a boundary curve "
+      "'auto': on for a material that yields (not for an elastic one, "
+      "also in finite strain: a step it cannot take is an error) unless a "
+      "boundary curve "
       "prescribes a displacement (a displacement-controlled run follows the "
       "mechanism, and a failed step is an error).");
     prm.declare_entry(

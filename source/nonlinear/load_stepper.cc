@@ -72,11 +72,12 @@ namespace bsmpm
               << " m per step\n";
       }
     else
-      // A limit load needs a material that yields (or large deformation):
-      // contact alone makes the run nonlinear, but an elastic body in
-      // contact has none. Under a rigid body that the load factor moves,
-      // the run follows the mechanism (as under a prescribed displacement);
-      // under one held or force-controlled, the load factor scales loads.
+      // A limit load needs a material that yields: contact or finite
+      // strain alone make the run nonlinear, but an elastic body has no
+      // strength, and a step it cannot take is a failure, not a limit load.
+      // Under a rigid body that the load factor moves, the run follows the
+      // mechanism (as under a prescribed displacement); under one held or
+      // force-controlled, the load factor scales loads.
       parts.collapse_detector.initialize(
         nonlinear && may_yield,
         parts.curves.prescribe_displacement() ||
@@ -303,11 +304,14 @@ namespace bsmpm
       }
     catch (const ExceptionBase &e)
       {
-        // A tangent that the linear solver finds singular after the first
-        // step is a body whose plastic points leave a mechanism free (at
-        // or beyond the limit load): a failed increment, to be cut. Before
-        // anything converged it is a missing support: the error stands.
-        if (!collapse_detector.active() || step == 1)
+        // A tangent that the linear solver finds singular once a system of
+        // the run has been solved is a body whose plastic points leave a
+        // mechanism free (at or beyond the limit load, also within the
+        // first step): a failed increment, to be cut. The run's very first
+        // system singular is a missing support: the error stands.
+        if (!collapse_detector.active() ||
+            (step == 1 && record.increments == 0 && cuts == 0 &&
+             solves.n_solves == 0))
           throw;
         result.converged = false;
         result.failure   = "the linear solve failed: " + message_of(e);
@@ -320,8 +324,11 @@ namespace bsmpm
     if (!result.converged)
       {
         // Under load control a step that cannot be converged however far it
-        // is cut is the limit load (CollapseDetector), not an error.
-        if (collapse_detector.active() && cuts >= newton.max_step_cuts())
+        // is cut is the limit load (CollapseDetector), not an error; unless
+        // its residual is not even finite: that is a numerical failure (a
+        // singular system), whatever the material.
+        if (collapse_detector.active() && cuts >= newton.max_step_cuts() &&
+            !result.not_finite)
           {
             newton.log_failure(result, lambda, delta, log());
             parts.collapse_detector.failed_increment(step,

@@ -109,7 +109,8 @@ namespace bsmpm
         if (!std::isfinite(norm))
           {
             result.iterations.push_back(iteration);
-            result.failure = "the residual is not finite";
+            result.failure    = "the residual is not finite";
+            result.not_finite = true;
             return result;
           }
         // Converged, or nothing to do (no load increment and no stress to

@@ -12,6 +12,29 @@
 
 namespace bsmpm
 {
+  std::vector<Point<2>>
+  MaterialPoints::locations(const std::vector<types::particle_index> &ids) const
+  {
+    std::map<types::particle_index, unsigned int> index;
+    for (unsigned int k = 0; k < ids.size(); ++k)
+      index.emplace(ids[k], k);
+    std::vector<std::pair<unsigned int, Point<2>>> found;
+    for (const auto &particle : particles)
+      {
+        const auto it = index.find(particle.get_id());
+        if (it != index.end())
+          found.emplace_back(it->second, particle.get_location());
+      }
+    std::vector<Point<2>> result(ids.size());
+    for (const auto &part :
+         Utilities::MPI::all_gather(grid.mpi_communicator(), found))
+      for (const auto &[k, p] : part)
+        result[k] = p;
+    return result;
+  }
+
+
+
   void
   MaterialPoints::track(const std::vector<types::particle_index> &ids)
   {

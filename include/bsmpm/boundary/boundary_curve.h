@@ -35,7 +35,6 @@ namespace bsmpm
     std::vector<unsigned int>   corners;
     std::vector<CurveCondition> conditions;
     bool                        trims_material_points = false;
-    bool                        halve_point_volumes   = false;
     /** Slots of the chain's points in MaterialPoints' tracked list. */
     std::vector<unsigned int> tracked_slots;
     std::vector<Point<2>>     positions;

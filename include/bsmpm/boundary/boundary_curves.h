@@ -217,6 +217,16 @@ namespace bsmpm
     complete_region_boundary(const BodyRegion     &region,
                              const BackgroundGrid &grid);
 
+    /** Where a curve of material points runs (Points = material points):
+     * along the body region's edge beside the outer layer of points, through
+     * the points, or through the points with their volumes halved. */
+    enum class OuterLayer
+    {
+      region_edge,
+      through_points,
+      through_halved_points
+    };
+
     /** How the points of a curve are given. */
     struct Source
     {
@@ -225,6 +235,25 @@ namespace bsmpm
       std::string           edge;
       unsigned int          n_points = 0;
       std::vector<Point<2>> positions; // for the first three
+      OuterLayer            outer_layer = OuterLayer::region_edge;
+
+      /** Whether the curve's points are material points, which carry
+       * volume (and cannot be inserted or removed). */
+      bool
+      through_material_points() const
+      {
+        return kind == "material points" &&
+               outer_layer != OuterLayer::region_edge;
+      }
+
+      /** Whether the curve runs along an edge of the body region. */
+      bool
+      along_region_edge() const
+      {
+        return kind == "region edge" ||
+               (kind == "material points" &&
+                outer_layer == OuterLayer::region_edge);
+      }
     };
 
     void

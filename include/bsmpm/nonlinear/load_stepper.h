@@ -96,8 +96,8 @@ namespace bsmpm
      * Under displacement control: refuses what its bordered Newton
      * iterations do not handle and finds the control vertex. Otherwise
      * sets the collapse detector up: a limit load is sought where the
-     * material may yield (@p may_yield: a nonlinear model or finite
-     * strain). @p resuming: the run goes on from a checkpoint.
+     * material may yield (@p may_yield: a material model with a
+     * strength). @p resuming: the run goes on from a checkpoint.
      */
     void
     initialize(const bool may_yield, const bool resuming);

@@ -62,6 +62,9 @@ namespace bsmpm
       std::vector<Iteration> iterations;
       /** Why it did not converge. */
       std::string failure;
+      /** Whether it stopped at a residual that is not finite (a singular
+       * system, not a mechanism). */
+      bool not_finite = false;
     };
 
     static void

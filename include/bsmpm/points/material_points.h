@@ -203,6 +203,11 @@ namespace bsmpm
     std::vector<types::particle_index>
     outer_layer(const std::vector<Point<2>> &corners, const bool closed) const;
 
+    /** The positions of the points @p ids, in that order, on every
+     * process. */
+    std::vector<Point<2>>
+    locations(const std::vector<types::particle_index> &ids) const;
+
     /** Multiplies the volume of the points with ids @p ids by @p factor
      * (the same list on every process); a repeated id is scaled once per
      * occurrence. */
