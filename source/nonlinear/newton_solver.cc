@@ -254,16 +254,21 @@ namespace bsmpm
                                const std::string &hint) const
   {
     log_failure(result, lambda, delta, log);
+    // A residual that is not finite however small the increment comes from
+    // a singular system, not from the load.
+    const std::string cause =
+      result.not_finite ?
+        ": the system is singular or nearly so (part of the body held by "
+        "too few material points, or not held against rigid motion)." :
+        ": the body may have reached its limit load, or the increment needs "
+        "more cuts (Nonlinear solver/Maximum step cuts).";
     AssertThrow(cuts < max_step_cuts(),
                 ExcMessage("Load step " + std::to_string(step) +
                            ": the Newton iterations failed (" + result.failure +
                            ") although the load increment was halved " +
                            std::to_string(cuts) + " times, to " +
-                           std::to_string(delta) +
-                           " of the load: the body may have reached its "
-                           "limit load, or the increment needs more cuts "
-                           "(Nonlinear solver/Maximum step cuts). The output "
-                           "of the previous step is intact." +
-                           hint));
+                           std::to_string(delta) + " of the load" + cause +
+                           " The output of the previous step is intact." +
+                           (result.not_finite ? std::string() : hint)));
   }
 } // namespace bsmpm

@@ -8,7 +8,7 @@ points per cell (down to less than one point per cell in a direction).
     cantilever_sweep.py --bsmpm build/bsmpm [--all | --cells P:NX:NY:H ...]
                         [--jobs N] [--np N] [--set A/B=v ...]
 
---all runs the whole table (80 runs, by hand: several minutes in a Release
+--all runs the whole table (40 runs, by hand: about a minute in a Release
 build with --jobs 2) and prints it as Markdown; without it, the cells given
 by --cells (the suite runs a few that once failed). The load is applied in
 P / 300 steps, the left curve fixed on its two points beside mid-height,
