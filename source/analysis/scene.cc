@@ -439,6 +439,8 @@ namespace bsmpm
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);
     update_curves(0);
+    if (contact.enabled() && first_step == 1)
+      contact.check_initial_places(boundary_curves, points, grid);
     if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 

@@ -234,9 +234,8 @@ namespace bsmpm
         shift = Utilities::MPI::min(shift, communicator);
         AssertThrow(std::isfinite(shift),
                     ExcMessage(
-                      bodies[b].name() + " (Rigid body " +
-                      std::to_string(b + 1) + "): its Force at load factor " +
-                      std::to_string(to) +
+                      bodies[b].name() + " (" + bodies[b].section() +
+                      "): its Force at load factor " + std::to_string(to) +
                       " pushes it where no boundary curve is within two "
                       "cells: nothing supports it. Place it touching the "
                       "body (or within two cells in the direction of its "
@@ -462,6 +461,24 @@ namespace bsmpm
       tangent_check.gather(communicator);
     history.store(curves, pieces, states, communicator);
     body_motion.accept();
+  }
+
+
+
+  void
+  CurveContact::check_initial_places(const BoundaryCurves &curves,
+                                     const MaterialPoints &points,
+                                     const BackgroundGrid &grid) const
+  {
+    std::vector<Tensor<1, 2>> places;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      places.push_back(body_motion.start(b));
+    RigidBodyPlacement::check(bodies,
+                              places,
+                              curves,
+                              points,
+                              grid.min_cell_size(),
+                              grid.mpi_communicator());
   }
 
 

@@ -17,6 +17,7 @@
 #include <bsmpm/contact/contact_terms.h>
 #include <bsmpm/contact/rigid_body.h>
 #include <bsmpm/contact/rigid_body_motion.h>
+#include <bsmpm/contact/rigid_body_placement.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 
@@ -99,6 +100,14 @@ namespace bsmpm
     {
       return body_motion;
     }
+
+    /** Refuses rigid bodies that start inside the body (its material
+     * @p points and @p curves) or inside each other, before the first
+     * step (RigidBodyPlacement). Collective. */
+    void
+    check_initial_places(const BoundaryCurves &curves,
+                         const MaterialPoints &points,
+                         const BackgroundGrid &grid) const;
 
     /** The bodies' outlines where the last finish_increment() left them
      * (closed polylines), for output. */

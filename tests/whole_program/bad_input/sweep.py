@@ -570,6 +570,22 @@ case("rigid_body_one_motion_component", "rigid body",
 case("rigid_body_motion_not_finite", "rigid body",
      COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
      s("Rigid body 1/Displacement=0; 1/(t-0.5)"), "is not finite")
+# Where a rigid body starts: inside the column (its top 1 m), overlapping
+# another, or pressed into the column's top by a hundredth of a cell (taken
+# as touching: up to a twentieth is).
+case("rigid_body_inside_body", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 9; 1, 9; 1, 11; 0, 11"),
+     "Rigid body 1 starts inside the body: the body's material lies up to "
+     "0.25 m inside its outline")
+case("rigid_bodies_overlapping", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Center=3, 5") + s("Rigid body 2/Shape=circle") +
+     s("Rigid body 2/Center=4, 5"),
+     "Rigid body 1 and Rigid body 2 overlap by 1 m")
+case("rigid_body_pressed_in_slightly", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 9.99; 1, 9.99; 1, 11; 0, 11"), OK)
 
 # --- command line ----------------------------------------------------------
 case("set_without_argument", "command line", COLUMN_SMALL + ["--set"],
