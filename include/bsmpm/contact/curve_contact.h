@@ -15,6 +15,7 @@
 #include <bsmpm/contact/contact_results.h>
 #include <bsmpm/contact/contact_tangent_check.h>
 #include <bsmpm/contact/contact_terms.h>
+#include <bsmpm/contact/pressure_balance.h>
 #include <bsmpm/contact/rigid_body.h>
 #include <bsmpm/contact/rigid_body_motion.h>
 #include <bsmpm/contact/rigid_body_placement.h>
@@ -188,6 +189,22 @@ namespace bsmpm
       const Q1CellKernel                               &kernel,
       const LinearAlgebra::distributed::Vector<double> &increment,
       const LinearAlgebra::distributed::Vector<double> *prescribed);
+
+    /**
+     * What to add to the message of a load increment that failed however
+     * far it was cut, where friction can be the cause: a frictional rigid
+     * body whose force-controlled components the pressures where it
+     * touches cannot hold (pressures_can_balance()), or, if @p body_load is
+     * given (the loads on the body, which nothing but contact supports),
+     * loads that the pressures of the rigid bodies touching it cannot
+     * balance while one of them is frictional. Empty where friction cannot
+     * be the cause (smooth or rough surfaces, bodies under prescribed
+     * motion on a supported body, forces along the contact's normals).
+     * Collective.
+     */
+    std::string
+    friction_hint(const BackgroundGrid &grid,
+                  const Tensor<1, 2>   *body_load) const;
 
     /** Carries the friction history (the tangential traction kept at the
      * curves' points) over to the chains that
