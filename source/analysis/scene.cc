@@ -468,6 +468,7 @@ namespace bsmpm
                 record_quantities(record);
                 record.quantities = run_summary.quantities;
                 run_summary.record_step(record, output, pcout);
+                step_output.write_contact_tractions(step);
                 if (output.writes_step(step, n_load_steps) ||
                     (collapsed && output.enabled()))
                   write_output(step, record.load_factor);

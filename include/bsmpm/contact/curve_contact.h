@@ -234,8 +234,8 @@ namespace bsmpm
     }
 
     /** The touching pieces of the last finish_increment() on all
-     * processes (collective; written by process 0 only): body, x, y (where
-     * they touch), gap, p_N, t_T, ds, sliding, as CSV. */
+     * processes as CSV (collective; written by process 0 only):
+     * ContactResults::write_tractions(). */
     void
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 
