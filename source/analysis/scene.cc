@@ -438,6 +438,8 @@ namespace bsmpm
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);
     update_curves(0);
+    if (contact.enabled() && first_step == 1)
+      contact.check_initial_places(boundary_curves, points, grid);
     if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 
@@ -465,6 +467,7 @@ namespace bsmpm
                 record_quantities(record);
                 record.quantities = run_summary.quantities;
                 run_summary.record_step(record, output, pcout);
+                step_output.write_contact_tractions(step);
                 if (output.writes_step(step, n_load_steps) ||
                     (collapsed && output.enabled()))
                   write_output(step, record.load_factor);

@@ -36,8 +36,11 @@ namespace bsmpm
         penetration[piece.body] = std::max(penetration[piece.body], -state.gap);
         piece_rows.insert(piece_rows.end(),
                           {double(piece.body + 1),
+                           double(piece.curve + 1),
                            state.midpoint[0],
                            state.midpoint[1],
+                           state.normal[0],
+                           state.normal[1],
                            state.gap,
                            state.pressure,
                            state.tangential,
@@ -85,13 +88,15 @@ namespace bsmpm
     const auto all = Utilities::MPI::gather(communicator, piece_rows, 0);
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
-    out << "body,x,y,gap,pressure,tangential_traction,length,sliding\n"
+    out << "body,curve,x,y,normal_x,normal_y,gap,pressure,"
+           "tangential_traction,length,sliding\n"
         << std::setprecision(10);
     for (const auto &part : all)
-      for (unsigned int i = 0; i + 8 <= part.size(); i += 8)
+      for (unsigned int i = 0; i + row_size <= part.size(); i += row_size)
         {
-          out << static_cast<unsigned int>(part[i]);
-          for (unsigned int j = 1; j < 8; ++j)
+          out << static_cast<unsigned int>(part[i]) << ','
+              << static_cast<unsigned int>(part[i + 1]);
+          for (unsigned int j = 2; j < row_size; ++j)
             out << ',' << part[i + j];
           out << '\n';
         }

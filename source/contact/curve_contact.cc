@@ -234,9 +234,8 @@ namespace bsmpm
         shift = Utilities::MPI::min(shift, communicator);
         AssertThrow(std::isfinite(shift),
                     ExcMessage(
-                      bodies[b].name() + " (Rigid body " +
-                      std::to_string(b + 1) + "): its Force at load factor " +
-                      std::to_string(to) +
+                      bodies[b].name() + " (" + bodies[b].section() +
+                      "): its Force at load factor " + std::to_string(to) +
                       " pushes it where no boundary curve is within two "
                       "cells: nothing supports it. Place it touching the "
                       "body (or within two cells in the direction of its "
@@ -466,6 +465,24 @@ namespace bsmpm
 
 
 
+  void
+  CurveContact::check_initial_places(const BoundaryCurves &curves,
+                                     const MaterialPoints &points,
+                                     const BackgroundGrid &grid) const
+  {
+    std::vector<Tensor<1, 2>> places;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      places.push_back(body_motion.start(b));
+    RigidBodyPlacement::check(bodies,
+                              places,
+                              curves,
+                              points,
+                              grid.min_cell_size(),
+                              grid.mpi_communicator());
+  }
+
+
+
   std::vector<std::vector<Point<2>>>
   CurveContact::outlines() const
   {
@@ -473,6 +490,69 @@ namespace bsmpm
     for (unsigned int b = 0; b < bodies.size(); ++b)
       lines.push_back(bodies[b].outline(body_motion.end(b)));
     return lines;
+  }
+
+
+
+  std::string
+  CurveContact::friction_hint(const BackgroundGrid &grid,
+                              const Tensor<1, 2>   *body_load) const
+  {
+    // The rigid outlines' normals where the curves (at the increment's
+    // start) touch the bodies (where the iterations left them), or come
+    // within a hundredth of a cell, on all processes.
+    const double                     near = 1e-2 * grid.min_cell_size();
+    std::vector<std::vector<double>> local(bodies.size());
+    const auto                       consider =
+      [&](const unsigned int b, const Point<2> &x, const unsigned int feature) {
+        const SurfacePoint s =
+          bodies[b].to_feature(x, body_motion.end(b), feature);
+        if (s.gap <= near)
+          local[b].insert(local[b].end(), {s.normal[0], s.normal[1]});
+      };
+    for (const ContactPiece &piece : pieces)
+      {
+        for (unsigned int q = 0; q < piece.positions.size(); ++q)
+          consider(piece.body, piece.positions[q], piece.features[q]);
+        if (piece.between_crossings)
+          for (unsigned int e = 0; e < 2; ++e)
+            consider(piece.body, piece.ends[e], piece.end_features[e]);
+      }
+    std::vector<std::vector<Tensor<1, 2>>> normals(bodies.size());
+    std::vector<Tensor<1, 2>>              all_normals;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      for (const auto &part :
+           Utilities::MPI::all_gather(grid.mpi_communicator(), local[b]))
+        for (unsigned int i = 0; i + 1 < part.size(); i += 2)
+          {
+            normals[b].push_back(Tensor<1, 2>({part[i], part[i + 1]}));
+            all_normals.push_back(normals[b].back());
+          }
+
+    // A rigid body under a force is in equilibrium when the force equals
+    // the sum of the pressures p n on it (n its outward normal); the body
+    // when its loads and the pressures p n on it sum to zero.
+    bool only_friction = false;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (bodies[b].friction() == RigidBody::Friction::frictional &&
+          !normals[b].empty())
+        {
+          if (bodies[b].has_free_motion() &&
+              !pressures_can_balance(bodies[b].applied_force(to),
+                                     normals[b],
+                                     {{bodies[b].force_controlled(0),
+                                       bodies[b].force_controlled(1)}}))
+            only_friction = true;
+          if (body_load != nullptr &&
+              !pressures_can_balance(-*body_load, all_normals))
+            only_friction = true;
+        }
+    return only_friction ?
+             " With rigid bodies: a body that only friction holds has no "
+             "quasi-static equilibrium once it slides (on an incline steeper "
+             "than its friction angle); hold it, or move the rigid body "
+             "instead." :
+             "";
   }
 
 

@@ -10,6 +10,14 @@ namespace bsmpm
   {
     unknowns.clear();
     index.assign(bodies.size(), {{-1, -1}});
+    sections.clear();
+    frictional.clear();
+    for (const RigidBody &body : bodies)
+      {
+        sections.push_back(body.section());
+        frictional.push_back(body.friction() ==
+                             RigidBody::Friction::frictional);
+      }
     for (unsigned int b = 0; b < bodies.size(); ++b)
       for (unsigned int d = 0; d < 2; ++d)
         if (bodies[b].force_controlled(d))
@@ -185,19 +193,28 @@ namespace bsmpm
       {
         const auto [b, d] = unknowns[k];
         std::ostringstream message;
-        message << "Rigid body " << b + 1
-                << ": nothing resists its force-controlled "
+        // A frictional surface across the direction holds at most mu times
+        // its pressure, nothing where the body only touches: then it
+        // slides, and sliding has no stiffness.
+        message << sections[b] << ": nothing resists its force-controlled "
                 << (d == 0 ? "x" : "y")
                 << " motion (its stiffness in that direction is " << S(k, k)
                 << " N/m^2, that of one cell in contact " << scale
                 << "): it touches no boundary curve (a force that pulls it "
-                   "off), only a smooth one across that direction, or "
-                   "material that yields freely under it (a force beyond "
-                   "the limit load). Place it touching the body, make its "
-                   "surface rough or frictional, prescribe that component "
-                   "(Displacement), or, beyond a limit load, ramp the force "
-                   "of a plastic material: the run then ends at the limit "
-                   "load (doc/limit-loads.md).";
+                   "off), "
+                << (frictional[b] ?
+                      "only a frictional one across that direction that "
+                      "the force makes slide (friction holds at most mu "
+                      "times the pressure, nothing where the body only "
+                      "touches)" :
+                      "only a smooth one across that direction")
+                << ", or material that yields freely under it (a force "
+                   "beyond the limit load). Place it touching the body, "
+                << (frictional[b] ? "make its surface rough, " :
+                                    "make its surface rough or frictional, ")
+                << "prescribe that component (Displacement), or, beyond a "
+                   "limit load, ramp the force of a plastic material: the "
+                   "run then ends at the limit load (doc/limit-loads.md).";
         AssertThrow(S(k, k) > 1e-10 * scale, ExcMessage(message.str()));
       }
     if (m == 2)

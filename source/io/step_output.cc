@@ -70,16 +70,23 @@ namespace bsmpm
                                    [&](std::ostream &out) {
                                      CurveOutput::write_outlines(out, outlines);
                                    });
-        std::ostringstream tractions;
-        contact->write_tractions(tractions, grid.mpi_communicator());
-        const std::string number = Utilities::int_to_string(step, 4);
-        output.write_root_file("contact-" + number + ".csv",
-                               [&](std::ostream &out) {
-                                 out << tractions.str();
-                               });
       }
 
     output.write_collections();
+  }
+
+
+
+  void
+  StepOutput::write_contact_tractions(const unsigned int step) const
+  {
+    if (contact == nullptr)
+      return;
+    std::ostringstream tractions;
+    contact->write_tractions(tractions, grid.mpi_communicator());
+    output.write_root_file("contact-" + Utilities::int_to_string(step, 4) +
+                             ".csv",
+                           [&](std::ostream &out) { out << tractions.str(); });
   }
 
 

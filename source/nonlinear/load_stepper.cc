@@ -337,19 +337,16 @@ namespace bsmpm
                                                      result.failure);
             return false;
           }
-        newton.report_failure(
-          result,
-          step,
-          lambda,
-          delta,
-          cuts,
-          log(),
-          parts.contact != nullptr ?
-            " With rigid bodies: a body that only friction holds has no "
-            "quasi-static equilibrium once it slides (on an incline steeper "
-            "than its friction angle); hold it, or move the rigid body "
-            "instead." :
-            "");
+        newton.report_failure(result,
+                              step,
+                              lambda,
+                              delta,
+                              cuts,
+                              log(),
+                              parts.contact != nullptr &&
+                                  cuts >= newton.max_step_cuts() ?
+                                friction_hint(lambda + delta) :
+                                "");
         return false;
       }
     TimerOutput::Scope t(timer, "update points");
@@ -386,6 +383,25 @@ namespace bsmpm
     ++record.stalled_increments;
     record.stalled_residual = std::max(record.stalled_residual, ratio);
     return true;
+  }
+
+
+
+  std::string
+  LoadStepper::friction_hint(const double load_factor) const
+  {
+    // A body that nothing but contact holds (InputChecks::check_supports())
+    // must rest on the rigid bodies under its own loads.
+    const bool supported =
+      parts.grid.has_face_conditions() ||
+      parts.curves.has_supports(
+        BoundaryCurve::DirichletMethod::implicit_boundary) ||
+      parts.curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
+    const Tensor<1, 2> load = load_factor * parts.material.density() *
+                                parts.points.global_volume() * parts.gravity +
+                              traction_resultant();
+    return parts.contact->friction_hint(parts.grid,
+                                        supported ? nullptr : &load);
   }
 
 

@@ -22,7 +22,8 @@ namespace bsmpm
    * What contact did in the last converged increment, for output: per
    * rigid body the force on it, the lengths in contact and sliding and the
    * largest penetration (summary.json), and per touching piece its place,
-   * gap and tractions (contact-NNNN.csv).
+   * the rigid outline's normal there, gap and tractions (contact-NNNN.csv,
+   * after every load step).
    */
   class ContactResults
   {
@@ -47,8 +48,13 @@ namespace bsmpm
            std::map<std::string, double> &quantities) const;
 
     /** The touching pieces on all processes (collective; written by
-     * process 0 only): body, x, y (where they touch), gap, p_N, t_T, ds,
-     * sliding, as CSV. */
+     * process 0 only), as CSV: body and curve (numbered from 1, the
+     * curves as in the ParaView series curves), x, y (the mean place of
+     * the touching part), the rigid outline's outward normal n there, the
+     * mean gap, the pressure p_N and tangential traction t_T (on the body,
+     * along n and t = (-n_y, n_x)), the length in contact and whether it
+     * slides. The force on the rigid body is minus the sum of
+     * (p_N n + t_T t) length over its rows. */
     void
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 
@@ -61,9 +67,10 @@ namespace bsmpm
       double       penetration    = 0;
     };
     std::vector<Resultant> resultants;
-    /** The pieces' figures on this process: body, x, y, gap, p_N, t_T,
-     * length, sliding. */
-    std::vector<double> piece_rows;
+    /** The pieces' figures on this process: body, curve, x, y, n_x, n_y,
+     * gap, p_N, t_T, length, sliding. */
+    std::vector<double>           piece_rows;
+    static constexpr unsigned int row_size = 11;
   };
 } // namespace bsmpm
 

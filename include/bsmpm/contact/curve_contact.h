@@ -15,8 +15,10 @@
 #include <bsmpm/contact/contact_results.h>
 #include <bsmpm/contact/contact_tangent_check.h>
 #include <bsmpm/contact/contact_terms.h>
+#include <bsmpm/contact/pressure_balance.h>
 #include <bsmpm/contact/rigid_body.h>
 #include <bsmpm/contact/rigid_body_motion.h>
+#include <bsmpm/contact/rigid_body_placement.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 
@@ -100,6 +102,14 @@ namespace bsmpm
       return body_motion;
     }
 
+    /** Refuses rigid bodies that start inside the body (its material
+     * @p points and @p curves) or inside each other, before the first
+     * step (RigidBodyPlacement). Collective. */
+    void
+    check_initial_places(const BoundaryCurves &curves,
+                         const MaterialPoints &points,
+                         const BackgroundGrid &grid) const;
+
     /** The bodies' outlines where the last finish_increment() left them
      * (closed polylines), for output. */
     std::vector<std::vector<Point<2>>>
@@ -180,6 +190,22 @@ namespace bsmpm
       const LinearAlgebra::distributed::Vector<double> &increment,
       const LinearAlgebra::distributed::Vector<double> *prescribed);
 
+    /**
+     * What to add to the message of a load increment that failed however
+     * far it was cut, where friction can be the cause: a frictional rigid
+     * body whose force-controlled components the pressures where it
+     * touches cannot hold (pressures_can_balance()), or, if @p body_load is
+     * given (the loads on the body, which nothing but contact supports),
+     * loads that the pressures of the rigid bodies touching it cannot
+     * balance while one of them is frictional. Empty where friction cannot
+     * be the cause (smooth or rough surfaces, bodies under prescribed
+     * motion on a supported body, forces along the contact's normals).
+     * Collective.
+     */
+    std::string
+    friction_hint(const BackgroundGrid &grid,
+                  const Tensor<1, 2>   *body_load) const;
+
     /** Carries the friction history (the tangential traction kept at the
      * curves' points) over to the chains that
      * BoundaryCurves::adapt_point_spacing() changed: a new point takes the
@@ -208,8 +234,8 @@ namespace bsmpm
     }
 
     /** The touching pieces of the last finish_increment() on all
-     * processes (collective; written by process 0 only): body, x, y (where
-     * they touch), gap, p_N, t_T, ds, sliding, as CSV. */
+     * processes as CSV (collective; written by process 0 only):
+     * ContactResults::write_tractions(). */
     void
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 

@@ -118,6 +118,14 @@ namespace bsmpm
       return body_name;
     }
 
+    /** The parameter section that defines it ("Rigid body 1"), for
+     * messages that say what to change. */
+    std::string
+    section() const
+    {
+      return "Rigid body " + body_name.substr(body_name.rfind('_') + 1);
+    }
+
     /** Whether component @p d (0: x, 1: y) of the body's translation is
      * force-controlled ('free' in Displacement): solved for, so that the
      * contact forces balance the applied Force (RigidBodyMotion). */

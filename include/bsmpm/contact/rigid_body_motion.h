@@ -246,6 +246,10 @@ namespace bsmpm
   private:
     std::vector<Unknown>            unknowns;
     std::vector<std::array<int, 2>> index;
+    /** Per body, for messages: its parameter section, and whether its
+     * surface is frictional. */
+    std::vector<std::string> sections;
+    std::vector<bool>        frictional;
 
     std::vector<Tensor<1, 2>> start_place, end_place;
     /** The free components' part of the places (zero elsewhere). */

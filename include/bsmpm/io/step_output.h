@@ -22,7 +22,8 @@ namespace bsmpm
    * the series grid (displacement increment, material fraction, support
    * quality and subdomain of every cell), points and, where the scene has
    * boundary curves, curves and curve_points (the curves with their
-   * traction Gauss points and support band points).
+   * traction Gauss points and support band points); and, after every load
+   * step whatever the ParaView interval, the contact tractions.
    */
   class StepOutput
   {
@@ -46,14 +47,22 @@ namespace bsmpm
           const std::vector<double>                        &fill_fractions,
           const std::vector<double> &support_qualities) const;
 
-    /** Also writes the rigid bodies of @p contact: their outlines (series
-     * rigid_bodies) and the contact tractions along the curves
-     * (contact-NNNN.csv, CurveContact::write_tractions()). */
+    /** Also writes the outlines of the rigid bodies of @p contact (series
+     * rigid_bodies), and lets write_contact_tractions() write its
+     * tractions. */
     void
     show_contact(const CurveContact &curve_contact)
     {
       contact = &curve_contact;
     }
+
+    /** Writes the contact tractions along the curves after load step
+     * @p step (contact-NNNN.csv, CurveContact::write_tractions()) if the
+     * scene has rigid bodies. Called after every load step, whatever
+     * Output/Interval: they are figures of the run, as summary.json's, not
+     * ParaView's. Collective. */
+    void
+    write_contact_tractions(const unsigned int step) const;
 
   private:
     void

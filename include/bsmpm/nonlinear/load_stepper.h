@@ -130,6 +130,12 @@ namespace bsmpm
     Tensor<1, 2>
     traction_resultant() const;
 
+    /** CurveContact::friction_hint() for an increment that failed at load
+     * factor @p load_factor, with the body's loads if nothing but contact
+     * supports it. Collective. */
+    std::string
+    friction_hint(const double load_factor) const;
+
     /** The support quality of every locally owned cell in the last
      * increment (GhostPenalty), as the increment's cuts lowered it. */
     const std::vector<double> &

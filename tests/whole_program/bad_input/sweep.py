@@ -82,6 +82,8 @@ PLATE = os.path.join(PRM, "plate-with-hole-neumann.prm")
 CANTILEVER = os.path.join(PRM, "cantilever.prm")
 CANTILEVER_FINITE = os.path.join(PRM, "cantilever-finite-strain.prm")
 FOOTING = os.path.join(PRM, "strip-footing.prm")
+BLOCK = os.path.join(os.path.abspath(args.source_dir), "tests", "whole_program",
+                     "contact", "block_on_plane.prm")
 
 # Every run of a scene: output into the case's own directory, no ParaView
 # files (unless a case asks for them), no timing table.
@@ -591,6 +593,29 @@ case("rigid_body_one_motion_component", "rigid body",
 case("rigid_body_motion_not_finite", "rigid body",
      COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
      s("Rigid body 1/Displacement=0; 1/(t-0.5)"), "is not finite")
+# Where a rigid body starts: inside the column (its top 1 m), overlapping
+# another, or pressed into the column's top by a hundredth of a cell (taken
+# as touching: up to a twentieth is).
+case("rigid_body_inside_body", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 9; 1, 9; 1, 11; 0, 11"),
+     "Rigid body 1 starts inside the body: the body's material lies up to "
+     "0.25 m inside its outline")
+case("rigid_bodies_overlapping", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Center=3, 5") + s("Rigid body 2/Shape=circle") +
+     s("Rigid body 2/Center=4, 5"),
+     "Rigid body 1 and Rigid body 2 overlap by 1 m")
+# A block on a frictional plane steeper than its friction angle: the
+# failed increment says that only friction holds it (one cut, not six: at
+# np = 2 in Debug the six took longer than the timeout).
+case("friction_cannot_hold", "rigid body",
+     [BLOCK] + s("Loading/Gravity=4.38577, -8.77154") +
+     s("Nonlinear solver/Maximum step cuts=1"),
+     "a body that only friction holds has no quasi-static equilibrium")
+case("rigid_body_pressed_in_slightly", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=polygon") +
+     s("Rigid body 1/Vertices=0, 9.99; 1, 9.99; 1, 11; 0, 11"), OK)
 
 # --- command line ----------------------------------------------------------
 case("set_without_argument", "command line", COLUMN_SMALL + ["--set"],

@@ -11,7 +11,16 @@
    normal force, the weight.
 4. No equilibrium: on an incline with tan(theta) = 0.5 > mu nothing holds
    the block (a quasi-static run cannot follow it sliding away): the run
-   must fail with a message, not hang or crash.
+   must fail with a message, not hang or crash, and say that a body that
+   only friction holds has no quasi-static equilibrium.
+5. Newton iterations made to fail (a residual tolerance of 1e-30, no
+   cuts, no stalled iterate accepted) where friction cannot be the cause:
+   the block on the level frictional plane (the pressure holds its weight)
+   and the block held at its side on a smooth plane. The run fails, and its
+   message must not speak of friction.
+6. The plane under the block held at its side, pushed sideways by a force
+   (force-controlled) beyond what friction holds: the run fails, saying
+   that the frictional surface slides.
 """
 import argparse
 import math
@@ -38,7 +47,7 @@ def case(name, settings, expect_success=True):
               f"{result.stderr.strip()[-300:]}")
         if result.returncode == 0:
             problems.append(f"{name}: the run did not fail")
-        return None
+        return result.stderr
     if result.returncode != 0:
         problems.append(f"{name}: exit code {result.returncode}: "
                         f"{result.stdout[-1500:]} {result.stderr}")
@@ -92,8 +101,33 @@ if q:
     check_weight("slip, dragged plane",
                  {**q, "rigid_body_1_force_x": 0.0}, (0.0, -9.81))
 
-case("no equilibrium", ["Loading/Gravity=4.38577, -8.77154"],
-     expect_success=False)
+HINT = "a body that only friction holds has no quasi-static equilibrium"
+message = case("no equilibrium", ["Loading/Gravity=4.38577, -8.77154"],
+               expect_success=False)
+if HINT not in message:
+    problems.append("no equilibrium: the message does not say that only "
+                    "friction holds the block")
+
+stopped = ["Nonlinear solver/Maximum iterations=2",
+           "Nonlinear solver/Residual tolerance=1e-30",
+           "Nonlinear solver/Stall tolerance=0",
+           "Nonlinear solver/Maximum step cuts=0"]
+for name, settings in [
+        ("stopped, level frictional plane", ["Loading/Gravity=0, -9.81"]),
+        ("stopped, smooth plane, block held at its side",
+         drag[:4] + ["Rigid body 1/Friction=smooth"])]:
+    message = case(name, stopped + settings, expect_success=False)
+    if HINT in message:
+        problems.append(f"{name}: the message blames friction")
+
+message = case("pushed beyond friction",
+               drag[:4] + ["Rigid body 1/Displacement=free; 0",
+                           "Rigid body 1/Force=2000*t; 0"],
+               expect_success=False)
+if "a frictional one across that direction that the force makes slide" \
+        not in message:
+    problems.append("pushed beyond friction: the message does not say "
+                    "that the frictional surface slides")
 
 for p in problems:
     print("FAIL:", p)
