@@ -108,6 +108,9 @@ namespace bsmpm
   void
   BodyRegion::parse_parameters(ParameterHandler &prm)
   {
+    // One function for the five shapes (about 160 lines): each reads its
+    // own entries and refuses what makes no region, with a message that
+    // names the entry; apart, they would repeat the subsection's handling.
     prm.enter_subsection("Body region");
     const std::string shape    = prm.get("Shape");
     region_shape               = shape == "rectangle" ?

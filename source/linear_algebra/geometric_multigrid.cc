@@ -423,6 +423,11 @@ namespace bsmpm
   void
   GeometricMultigrid::Implementation::setup_smoothers_and_coarse_solver()
   {
+    // About 170 lines in two parts: the smoother of each level (Jacobi or
+    // the vertex patches, scaled by the largest eigenvalue of its
+    // preconditioned operator), then the coarsest level's operator, made
+    // invertible, and its solver (KLU up to a size, else AMG with the two
+    // translations as its constant modes).
     for (unsigned int l = 0; l + 1 < levels.size(); ++l)
       {
         Level                  &level = *levels[l];

@@ -79,7 +79,10 @@ namespace bsmpm
     const std::function<bool(const CellIndex &)> &wanted_cell,
     const std::function<void(const Point<2> &, double, unsigned long)> &f) const
   {
-    // For layouts not tied to cells: skip points in unwanted cells.
+    // One switch over the layouts (about 150 lines): each case is a loop
+    // that generates its points and their volumes, and reads best beside
+    // the others, whose volumes it must match. For layouts not tied to
+    // cells: skip points in unwanted cells.
     const auto wanted_point = [&](const Point<2> &p) {
       return !grid.contains(p) || wanted_cell(grid.cell_index(p));
     };
