@@ -272,6 +272,7 @@ namespace bsmpm
                                                            *assembly,
                                                            *increment_solver,
                                                            collapse_detector,
+                                                           linear_solver,
                                                            curve_contact});
   }
 

@@ -47,7 +47,7 @@ namespace bsmpm
 
     /** First line of every archive: what it is and in which format. */
     const std::string  magic   = "bsmpm checkpoint";
-    const unsigned int version = 5;
+    const unsigned int version = 6;
 
     /** What both archives start with, checked before anything else is
      * read. */

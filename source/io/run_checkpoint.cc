@@ -21,16 +21,19 @@ namespace bsmpm
                        const RunSummary   &so_far,
                        const OutputWriter &output) const
   {
-    // Where the next step's Newton iterations start, and the contact's
-    // state (the same on every process).
+    // What the next step starts from, the linear solver's choice of
+    // method, and the contact's state (the same on every process).
     std::ostringstream state;
     {
       const IncrementSolver::Memory   memory = parts.increment_solver.memory();
       boost::archive::binary_oarchive archive(state);
-      archive << memory << parts.collapse_detector;
+      archive << memory << parts.collapse_detector << parts.linear_solver;
       if (parts.contact != nullptr)
         archive << *parts.contact;
     }
+    // A resumed run starts its solves without the factors, hierarchies and
+    // first guesses of earlier ones: so does this run from here on.
+    parts.linear_solver.drop_reused_state();
     checkpoint.write(step,
                      parts.grid,
                      parts.points,
@@ -76,7 +79,7 @@ namespace bsmpm
         std::istringstream              in(state);
         boost::archive::binary_iarchive archive(in);
         IncrementSolver::Memory         memory;
-        archive >> memory >> parts.collapse_detector;
+        archive >> memory >> parts.collapse_detector >> parts.linear_solver;
         parts.increment_solver.restore(memory);
         if (parts.contact != nullptr)
           archive >> *parts.contact;

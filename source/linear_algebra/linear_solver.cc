@@ -735,6 +735,26 @@ namespace bsmpm
 
 
 
+  void
+  LinearSolver::drop_reused_state() const
+  {
+    reset_preconditioner();
+    amg_matrix       = nullptr;
+    amg_structure    = 0;
+    fresh_iterations = 0;
+    direct_factors.reset();
+    unchanged_matrix = false;
+    direct_matrix    = nullptr;
+    direct_structure = 0;
+    direct_method.clear();
+    gmg_failed           = false;
+    gmg_failed_matrix    = nullptr;
+    gmg_failed_structure = 0;
+    last_solution.clear();
+  }
+
+
+
   LinearSolver::Report
   LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                       TrilinosWrappers::MPI::Vector        &solution,

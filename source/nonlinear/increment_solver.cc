@@ -556,8 +556,9 @@ namespace bsmpm
     Memory                memory;
     memory.delta                  = previous_delta;
     memory.largest_internal_force = largest_internal_force;
-    memory.at_vertices.assign(2 * (grid.n_cells(0) + 1) * (grid.n_cells(1) + 1),
-                              0.);
+    const unsigned int n_vertex_dofs =
+      2 * (grid.n_cells(0) + 1) * (grid.n_cells(1) + 1);
+    memory.at_vertices.assign(n_vertex_dofs, 0.);
     if (previous_increment.size() > 0)
       for_each_owned_vertex_dof(
         [&](const types::global_dof_index dof, const unsigned int k) {
@@ -567,6 +568,21 @@ namespace bsmpm
     Utilities::MPI::sum(memory.at_vertices,
                         grid.mpi_communicator(),
                         memory.at_vertices);
+    const auto *ratios =
+      parts.constitutive_update != nullptr ?
+        parts.constitutive_update->support_stiffness_ratios() :
+        nullptr;
+    if (ratios != nullptr)
+      {
+        memory.stiffness_ratios.assign(n_vertex_dofs, 0.);
+        for_each_owned_vertex_dof(
+          [&](const types::global_dof_index dof, const unsigned int k) {
+            memory.stiffness_ratios[k] = (*ratios)(dof);
+          });
+        Utilities::MPI::sum(memory.stiffness_ratios,
+                            grid.mpi_communicator(),
+                            memory.stiffness_ratios);
+      }
     return memory;
   }
 
@@ -587,5 +603,19 @@ namespace bsmpm
           previous_increment(dof) = memory.at_vertices[k];
         });
     previous_increment.update_ghost_values();
+    if (!memory.stiffness_ratios.empty() &&
+        parts.constitutive_update != nullptr)
+      {
+        LinearAlgebra::distributed::Vector<double> ratios(
+          grid.locally_owned_dofs(),
+          grid.locally_relevant_dofs(),
+          grid.mpi_communicator());
+        for_each_owned_vertex_dof(
+          [&](const types::global_dof_index dof, const unsigned int k) {
+            ratios(dof) = memory.stiffness_ratios[k];
+          });
+        ratios.update_ghost_values();
+        parts.constitutive_update->restore_support_stiffness_ratios(ratios);
+      }
   }
 } // namespace bsmpm

@@ -296,6 +296,17 @@ namespace bsmpm
       return stiffness_ratio.size() > 0 ? &stiffness_ratio : nullptr;
     }
 
+    /** Sets the ratios of support_stiffness_ratios() as a resumed run
+     * takes them from its checkpoint (with ghost values): what the last
+     * commit() before it left, which the next load step's support
+     * qualities depend on. Const as commit() is, which computes them. */
+    void
+    restore_support_stiffness_ratios(
+      const LinearAlgebra::distributed::Vector<double> &ratios) const
+    {
+      stiffness_ratio = ratios;
+    }
+
     /** Voigt form (xx, yy, zz, xy; engineering shear) of a 3D tangent. */
     static Tensor<2, 4>
     voigt_tangent(const SymmetricTensor<4, 3> &tangent);

@@ -7,6 +7,7 @@
 #include <bsmpm/io/checkpoint.h>
 #include <bsmpm/io/output_writer.h>
 #include <bsmpm/io/run_summary.h>
+#include <bsmpm/linear_algebra/linear_solver.h>
 #include <bsmpm/nonlinear/collapse_detector.h>
 #include <bsmpm/nonlinear/increment_solver.h>
 #include <bsmpm/points/material_points.h>
@@ -22,10 +23,13 @@ namespace bsmpm
    * What a run writes into its checkpoints and takes back when it resumes,
    * beyond what Checkpoint reads and writes (the grid, the points, the
    * summary and the series records): the weak cells the system matrix was
-   * made for (SystemAssembly), where the next load step's Newton
-   * iterations start (IncrementSolver), the collapse detector's history
-   * and the contact's state (the same on every process), the last three as
-   * one binary archive.
+   * made for (SystemAssembly), what the next load step starts from
+   * (IncrementSolver::Memory), the collapse detector's history, the linear
+   * solver's choice of method and the contact's state (the same on every
+   * process), the last four as one binary archive. What cannot be kept
+   * (factors, multigrid hierarchies, CG's first guess) the run drops when
+   * it writes a checkpoint (LinearSolver::drop_reused_state()), so that
+   * on one process a resumed run is bitwise the run left alone.
    */
   class RunCheckpoint
   {
@@ -38,6 +42,7 @@ namespace bsmpm
       SystemAssembly       &assembly;
       IncrementSolver      &increment_solver;
       CollapseDetector     &collapse_detector;
+      LinearSolver         &linear_solver;
       /** Contact with rigid bodies, or null. */
       CurveContact *contact;
     };

@@ -113,6 +113,28 @@ namespace bsmpm
       return estimate_condition;
     }
 
+    /**
+     * Drops what later solves would take over from earlier ones: the
+     * factors and their symbolic analysis, the multigrid hierarchies, CG's
+     * first guess (the last solution) and the geometric multigrid's
+     * failure. A run resumed from a checkpoint has none of them, and the
+     * solves' round-off depends on them (a reused AMG hierarchy, a CG
+     * started from the last solution): the run that writes the checkpoint
+     * drops them there, so that it and a run resumed from it go on alike.
+     */
+    void
+    drop_reused_state() const;
+
+    /** For checkpoints: the automatic method's choice of the run's later
+     * solves (CG failed or was slow: direct from then on), which a resumed
+     * run keeps. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &cg_failed &cg_slow &cg_slow_said;
+    }
+
   private:
     /** Automatic mode: the CG iterations above which a system of @p n
      * unknowns is factorised faster ('Automatic iteration limit' at 100 k

@@ -128,18 +128,23 @@ namespace bsmpm
 
     /** What the next load step starts from (the last converged increment,
      * at the grid's vertices so that it does not depend on the processes,
-     * its load increment, the residual's scale), for checkpoints. */
+     * its load increment, the residual's scale, and how much of its
+     * elastic stiffness the material keeps round each vertex: the support
+     * qualities of the next step's system depend on it, ConstitutiveUpdate::
+     * support_stiffness_ratios()), for checkpoints. */
     struct Memory
     {
       std::vector<double> at_vertices;
       double              delta                  = 0;
       double              largest_internal_force = 0;
+      /** By vertex as at_vertices; empty before the first commit. */
+      std::vector<double> stiffness_ratios;
 
       template <class Archive>
       void
       serialize(Archive &archive, const unsigned int)
       {
-        archive &at_vertices &delta &largest_internal_force;
+        archive &at_vertices &delta &largest_internal_force &stiffness_ratios;
       }
     };
 
