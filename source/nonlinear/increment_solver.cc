@@ -289,6 +289,7 @@ namespace bsmpm
     for (const auto i : grid.locally_owned_dofs())
       increment(i) += correction(i);
     increment.update_ghost_values();
+    ++solves.n_corrections;
     const double size =
       std::sqrt(std::pow(increment.l2_norm(), 2) + motion_size);
     last.grid = correction;

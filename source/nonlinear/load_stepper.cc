@@ -304,14 +304,15 @@ namespace bsmpm
       }
     catch (const ExceptionBase &e)
       {
-        // A tangent that the linear solver finds singular once a system of
-        // the run has been solved is a body whose plastic points leave a
-        // mechanism free (at or beyond the limit load, also within the
-        // first step): a failed increment, to be cut. The run's very first
-        // system singular is a missing support: the error stands.
+        // A tangent that the linear solver finds singular once a Newton
+        // correction of the run has been solved is a body whose plastic
+        // points leave a mechanism free (at or beyond the limit load, also
+        // within the first step): a failed increment, to be cut. The run's
+        // very first system singular (with a rigid body's motion: a body
+        // that nothing holds) is a missing support: the error stands.
         if (!collapse_detector.active() ||
             (step == 1 && record.increments == 0 && cuts == 0 &&
-             solves.n_solves == 0))
+             solves.n_corrections == 0))
           throw;
         result.converged = false;
         result.failure   = "the linear solve failed: " + message_of(e);

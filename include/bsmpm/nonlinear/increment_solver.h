@@ -53,6 +53,9 @@ namespace bsmpm
     struct LinearSolves
     {
       unsigned int n_solves = 0;
+      /** Newton corrections completed (the grid's and the rigid bodies'
+       * motion): none where the increment's first system failed. */
+      unsigned int n_corrections = 0;
       std::string  method;
       unsigned int iterations        = 0;
       unsigned int refinement_steps  = 0;
