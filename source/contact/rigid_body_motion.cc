@@ -215,17 +215,19 @@ namespace bsmpm
                 << "prescribe that component (Displacement), or, beyond a "
                    "limit load, ramp the force of a plastic material: the "
                    "run then ends at the limit load (doc/limit-loads.md).";
-        AssertThrow(S(k, k) > 1e-10 * scale, ExcMessage(message.str()));
+        AssertThrow(S(k, k) > 1e-10 * scale,
+                    ExcUnresistedMotion(message.str()));
       }
     if (m == 2)
       {
         const double det = S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0);
         AssertThrow(det > 1e-10 * S(0, 0) * S(1, 1),
-                    ExcMessage("The rigid bodies' two force-controlled "
-                               "components are not both resisted by "
-                               "contact: the stiffness against them is "
-                               "singular (a body on a smooth surface "
-                               "inclined to both)."));
+                    ExcUnresistedMotion(
+                      "The rigid bodies' two force-controlled "
+                      "components are not both resisted by "
+                      "contact: the stiffness against them is "
+                      "singular (a body on a smooth surface "
+                      "inclined to both)."));
       }
     FullMatrix<double> inverse(m, m);
     inverse.invert(S);

@@ -1,4 +1,5 @@
 #include <bsmpm/base/exception_message.h>
+#include <bsmpm/contact/rigid_body_motion.h>
 #include <bsmpm/nonlinear/load_stepper.h>
 
 #include <algorithm>
@@ -310,9 +311,14 @@ namespace bsmpm
         // within the first step): a failed increment, to be cut. The run's
         // very first system singular (with a rigid body's motion: a body
         // that nothing holds) is a missing support: the error stands.
-        if (!collapse_detector.active() ||
-            (step == 1 && record.increments == 0 && cuts == 0 &&
-             solves.n_corrections == 0))
+        // A rigid body's force-controlled motion that no contact resists in
+        // the first step is the input's (a force that pulls it off).
+        const bool first =
+          dynamic_cast<const ExcUnresistedMotion *>(&e) != nullptr ?
+            step == 1 :
+            step == 1 && record.increments == 0 && cuts == 0 &&
+              solves.n_corrections == 0;
+        if (!collapse_detector.active() || first)
           throw;
         result.converged = false;
         result.failure   = "the linear solve failed: " + message_of(e);

@@ -1,6 +1,7 @@
 #ifndef bsmpm_rigid_body_motion_h
 #define bsmpm_rigid_body_motion_h
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
@@ -21,6 +22,12 @@
 namespace bsmpm
 {
   using namespace dealii;
+
+  /** A force-controlled component of a rigid body that no contact
+   * resists (RigidBodyMotion::bordered_correction()). */
+  DeclException1(ExcUnresistedMotion, std::string, << arg1);
+
+
 
   /**
    * Where the rigid bodies are within a load increment, and the unknowns
