@@ -52,8 +52,8 @@ namespace bsmpm
      * the probe, "sm" is not selected and "lockedfile" is used instead,
      * silently.) The same removal can also break a singleton's MPI_Init
      * between its mkdir of jf.0/1 and of jf.0/1/0. Seen by
-     * tests/whole_program/checkpoint/concurrent_resume.py, which holds a resume in that
-     * window while another bsmpm process starts and ends.
+     * tests/whole_program/checkpoint/concurrent_resume.py, which holds a resume
+     * in that window while another bsmpm process starts and ends.
      *
      * Open MPI's own mpirun avoids it: each job family is named after the
      * mpirun's pid. Here the top of the session tree

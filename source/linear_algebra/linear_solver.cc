@@ -322,12 +322,11 @@ namespace bsmpm
           {
             klu = direct_factors->factorize(A, "Amesos_Klu", symmetric);
             if (klu == DirectSolver::Status::success)
-              report.method =
-                mumps == DirectSolver::Status::unavailable ?
-                  "direct (KLU)" :
-                mumps == DirectSolver::Status::out_of_memory ?
-                  "direct (KLU, MUMPS out of memory)" :
-                  "direct (KLU, MUMPS failed)";
+              report.method = mumps == DirectSolver::Status::unavailable ?
+                                "direct (KLU)" :
+                              mumps == DirectSolver::Status::out_of_memory ?
+                                "direct (KLU, MUMPS out of memory)" :
+                                "direct (KLU, MUMPS failed)";
           }
         direct_method = report.method;
       }
