@@ -1,5 +1,5 @@
 // The checks that the unit tests of the constitutive models share
-// (materials/elastic_01, von_mises_01, drucker_prager_01): the material
+// (the parts of materials/constitutive_models): the material
 // constants, trial strains built backwards from a known return, and the
 // checks every model undergoes: update() against the known return,
 // plane_strain_update() against update(), and elastic_reach().

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Runs a scene serially and with mpirun -np N and checks that every error
-and quantity of summary.json agrees to a relative tolerance.
+"""Runs a scene serially and with mpirun -np N (for each N of --np, against
+the one serial run) and checks that every error and quantity of
+summary.json agrees to a relative tolerance.
 
 "Agree" means: as fields. Any change in the order of operations (the
 partition, the pivoting of the direct solver) moves the solution by about
@@ -59,7 +60,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--bsmpm", required=True)
     parser.add_argument("--prm", required=True)
-    parser.add_argument("--np", type=int, default=2)
+    parser.add_argument("--np", type=int, nargs="+", default=[2],
+                        help="numbers of processes, each compared with the "
+                        "serial run")
     parser.add_argument("--tolerance", type=float, default=1e-10)
     parser.add_argument("--yield-tolerance", type=float, default=0.005)
     parser.add_argument("--repeat", action="store_true",
@@ -71,10 +74,18 @@ def main():
 
     settings = args.set + ["Output/Interval=0", "Output/Timing summary=false"]
     serial = run(args.bsmpm, args.prm, 1, settings)
-    parallel = run(args.bsmpm, args.prm, args.np, settings)
-    again = (run(args.bsmpm, args.prm, args.np, settings)
-             if args.repeat else None)
+    failed = False
+    for np in args.np:
+        parallel = run(args.bsmpm, args.prm, np, settings)
+        again = run(args.bsmpm, args.prm, np, settings) if args.repeat else None
+        failed |= compare(serial, parallel, again, np, args)
+    print("serial and parallel runs agree" if not failed else "MISMATCH")
+    return 1 if failed else 0
 
+
+def compare(serial, parallel, again, np, args):
+    """Whether the run at @p np processes (and @p again, its repetition)
+    fails to give the serial results; prints every comparison."""
     failed = False
     if again is not None:
         # One run must give the bits of the next (equal, not close: a
@@ -83,17 +94,17 @@ def main():
             differ = sorted(k for k in set(parallel[section]) | set(again[section])
                             if parallel[section].get(k) != again[section].get(k))
             if differ:
-                print(f"np={args.np} run twice: {section} differ: " +
+                print(f"np={np} run twice: {section} differ: " +
                       ", ".join(f"{k} {parallel[section].get(k)!r} "
                                 f"{again[section].get(k)!r}" for k in differ[:4]))
                 failed = True
         for a, b in zip(parallel["steps"], again["steps"]):
             if a != b:
-                print(f"np={args.np} run twice: step {a['step']} differs")
+                print(f"np={np} run twice: step {a['step']} differs")
                 failed = True
                 break
         if not failed:
-            print(f"np={args.np} run twice: the same bits")
+            print(f"np={np} run twice: the same bits")
     for key in ("n_cells", "n_dofs", "n_material_points", "n_tracking_points"):
         if serial[key] != parallel[key]:
             print(f"{key}: serial {serial[key]} != parallel {parallel[key]}")
@@ -118,11 +129,10 @@ def main():
                 ok = difference <= max(1, args.yield_tolerance * a[name])
             else:
                 ok = difference <= args.tolerance * reference
-            print(f"{section}/{name}: serial {a[name]:.15e} np={args.np} "
+            print(f"{section}/{name}: serial {a[name]:.15e} np={np} "
                   f"{b[name]:.15e} {'ok' if ok else 'DIFFERENT'}")
             failed |= not ok
-    print("serial and parallel runs agree" if not failed else "MISMATCH")
-    return 1 if failed else 0
+    return failed
 
 
 if __name__ == "__main__":
