@@ -250,9 +250,8 @@ namespace bsmpm
       // The parser finds an unknown name only when it first evaluates.
       try
         {
-          function->initialize("t",
-                               expressions,
-                               std::map<std::string, double>());
+          // pi as in the curves' conditions (doc/parameters.md).
+          function->initialize("t", expressions, {{"pi", numbers::PI}});
           function->value(Point<1>(0.), 0);
           function->value(Point<1>(0.), 1);
         }

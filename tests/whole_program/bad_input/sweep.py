@@ -589,6 +589,11 @@ case("rigid_body_bad_motion", "rigid body",
 case("rigid_body_one_motion_component", "rigid body",
      COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
      s("Rigid body 1/Displacement=-0.1*t"), "is not two expressions")
+# pi in a rigid body's motion, as in a curve's condition.
+case("rigid_body_motion_with_pi", "rigid body",
+     COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
+     s("Rigid body 1/Center=0.5, 11") +
+     s("Rigid body 1/Displacement=0; -0.1*sin(pi*t/2)"), OK)
 case("rigid_body_motion_not_finite", "rigid body",
      COLUMN_SMALL + s("Rigid body 1/Shape=circle") +
      s("Rigid body 1/Displacement=0; 1/(t-0.5)"), "is not finite")
