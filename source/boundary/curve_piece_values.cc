@@ -54,6 +54,16 @@ namespace bsmpm
 
 
 
+  CurvePieceValues::Filter
+  CurvePieceValues::free_pieces()
+  {
+    return [](const BoundaryCurve &, const CurveCondition *condition) {
+      return condition == nullptr;
+    };
+  }
+
+
+
   void
   CurvePieceValues::reinit(const LocallyOwnedCurvePiece &piece)
   {
