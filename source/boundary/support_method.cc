@@ -78,6 +78,49 @@ namespace bsmpm
 
 
 
+  std::optional<Point<2>>
+  SupportMethod::bbar_point(const std::vector<CellMoments> *moments,
+                            const LocallyOwnedCurvePiece   &piece)
+  {
+    if (moments == nullptr)
+      return std::nullopt;
+    return Q1CellKernel::centroid(
+      (*moments)[piece.owned_cell->active_cell_index()]);
+  }
+
+
+
+  void
+  SupportMethod::add_piece_terms(const Context                   &context,
+                                 const Quadrature<1>             &along,
+                                 const BoundaryCurve             *only,
+                                 const AffineConstraints<double> &constraints,
+                                 TrilinosWrappers::SparseMatrix  *matrix,
+                                 TrilinosWrappers::MPI::Vector   &vector,
+                                 const PieceTerms &piece_terms) const
+  {
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    FullMatrix<double>     cell_matrix(n, n);
+    Vector<double>         cell_vector(n);
+    CurvePieceValues       values(context.grid, along);
+    for (const auto &piece : supported_pieces(values, context.curves, only))
+      {
+        values.reinit(piece);
+        cell_matrix = 0;
+        cell_vector = 0;
+        piece_terms(values, cell_matrix, cell_vector);
+        if (matrix != nullptr)
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_vector, values.dof_indices(), *matrix, vector);
+        else
+          constraints.distribute_local_to_global(cell_vector,
+                                                 values.dof_indices(),
+                                                 vector);
+      }
+  }
+
+
+
   bool
   register_support_method(const std::string        &name,
                           const SupportMethodEntry &entry)
