@@ -41,8 +41,8 @@ namespace bsmpm
 
 
   CurvePieceValues::Filter
-  CurvePieceValues::supports_by(const BoundaryCurve::DirichletMethod method,
-                                const BoundaryCurve                 *only)
+  CurvePieceValues::supports_by(const std::string   &method,
+                                const BoundaryCurve *only)
   {
     return [method, only](const BoundaryCurve  &curve,
                           const CurveCondition *condition) {

@@ -25,12 +25,14 @@ namespace bsmpm
         {gradient[0][0], gradient[1][1], gradient[0][1] + gradient[1][0]});
     }
 
+    /** The registered name of the implicit boundary method. */
+    constexpr char implicit_boundary_name[] = "implicit boundary";
+
     bool
     is_ibm_support(const BoundaryCurve &curve, const CurveCondition *condition)
     {
       return condition != nullptr && condition->is_support() &&
-             curve.dirichlet_method ==
-               BoundaryCurve::DirichletMethod::implicit_boundary;
+             curve.dirichlet_method == implicit_boundary_name;
     }
 
     /**
@@ -81,8 +83,7 @@ namespace bsmpm
 
 
   ImplicitBoundary::ImplicitBoundary()
-    : SupportMethod("implicit boundary",
-                    BoundaryCurve::DirichletMethod::implicit_boundary)
+    : SupportMethod(implicit_boundary_name)
   {}
 
 
@@ -188,8 +189,7 @@ namespace bsmpm
     // Every process holds every curve: the check is collective.
     if (formulation != Formulation::consistent)
       for (const auto &curve : curves.get_curves())
-        if (curve.dirichlet_method ==
-            BoundaryCurve::DirichletMethod::implicit_boundary)
+        if (imposes(curve))
           for (const auto &condition : curve.conditions)
             AssertThrow(
               condition.kind != CurveCondition::Kind::normal_displacement,
@@ -211,7 +211,7 @@ namespace bsmpm
     // nobody, so these forms are refused rather than run wrong.
     if (finite_strain && formulation != Formulation::consistent)
       AssertThrow(
-        !curves.has_supports(BoundaryCurve::DirichletMethod::implicit_boundary),
+        !used_by(curves),
         ExcMessage(
           "Implicit boundary/Formulation = " +
           std::string(formulation == Formulation::frame ? "D-scaled" :
@@ -673,8 +673,7 @@ namespace bsmpm
   ImplicitBoundary::prescribes_displacement(const BoundaryCurves &curves)
   {
     for (const auto &curve : curves.get_curves())
-      if (curve.dirichlet_method ==
-          BoundaryCurve::DirichletMethod::implicit_boundary)
+      if (curve.dirichlet_method == implicit_boundary_name)
         for (const auto &condition : curve.conditions)
           if (condition.kind == CurveCondition::Kind::displacement)
             return true;

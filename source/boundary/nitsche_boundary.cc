@@ -27,7 +27,7 @@ namespace bsmpm
 
 
   NitscheBoundary::NitscheBoundary()
-    : SupportMethod("nitsche", BoundaryCurve::DirichletMethod::nitsche)
+    : SupportMethod("nitsche")
   {}
 
 

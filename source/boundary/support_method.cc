@@ -14,10 +14,8 @@ namespace bsmpm
 
 
 
-  SupportMethod::SupportMethod(const std::string                   &name,
-                               const BoundaryCurve::DirichletMethod method)
+  SupportMethod::SupportMethod(const std::string &name)
     : method_name(name)
-    , method(method)
   {}
 
 
@@ -28,7 +26,7 @@ namespace bsmpm
                             const bool            both_components_only,
                             std::vector<bool>    &cells) const
   {
-    curves.mark_support_cells(grid, method, both_components_only, cells);
+    curves.mark_support_cells(grid, method_name, both_components_only, cells);
   }
 
 
@@ -137,5 +135,16 @@ namespace bsmpm
   registered_support_methods()
   {
     return support_method_registry();
+  }
+
+
+
+  std::string
+  support_method_names()
+  {
+    std::string names;
+    for (const auto &[name, entry] : support_method_registry())
+      names += (names.empty() ? "" : "|") + name;
+    return names;
   }
 } // namespace bsmpm

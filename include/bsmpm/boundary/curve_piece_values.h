@@ -84,11 +84,10 @@ namespace bsmpm
     pieces(const BoundaryCurves &curves, const Filter &filter) const;
 
     /** Filters of pieces() used by several callers. */
-    /** The supports imposed by @p method; of the curve @p only alone
-     * unless nullptr. */
+    /** The supports imposed by the support method registered as
+     * @p method; of the curve @p only alone unless nullptr. */
     static Filter
-    supports_by(const BoundaryCurve::DirichletMethod method,
-                const BoundaryCurve                 *only = nullptr);
+    supports_by(const std::string &method, const BoundaryCurve *only = nullptr);
 
     /** The free pieces, on which no condition acts: those that may touch
      * a rigid body (contact). */

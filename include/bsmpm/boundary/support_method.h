@@ -88,11 +88,10 @@ namespace bsmpm
       Point<2>     reference_position; // in that cell
     };
 
-    /** A method registered as @p name (the value of "Dirichlet method"
-     * that selects it) that imposes the supports of the curves whose
-     * "Dirichlet method" is @p method. */
-    SupportMethod(const std::string                   &name,
-                  const BoundaryCurve::DirichletMethod method);
+    /** A method registered as @p name, the value of "Dirichlet method"
+     * that selects it: it imposes the supports of the curves whose
+     * "Dirichlet method" is @p name. */
+    SupportMethod(const std::string &name);
 
     virtual ~SupportMethod() = default;
 
@@ -111,14 +110,14 @@ namespace bsmpm
     bool
     imposes(const BoundaryCurve &curve) const
     {
-      return curve.dirichlet_method == method;
+      return curve.dirichlet_method == method_name;
     }
 
     /** Whether any curve has a support that this method imposes. */
     bool
     used_by(const BoundaryCurves &curves) const
     {
-      return curves.has_supports(method);
+      return curves.has_supports(method_name);
     }
 
     /** The pieces in locally owned cells of this method's supports (of
@@ -128,7 +127,8 @@ namespace bsmpm
                      const BoundaryCurves   &curves,
                      const BoundaryCurve    *only) const
     {
-      return values.pieces(curves, CurvePieceValues::supports_by(method, only));
+      return values.pieces(curves,
+                           CurvePieceValues::supports_by(method_name, only));
     }
 
     /**
@@ -261,8 +261,7 @@ namespace bsmpm
                     const PieceTerms                &piece_terms) const;
 
   private:
-    const std::string                    method_name;
-    const BoundaryCurve::DirichletMethod method;
+    const std::string method_name;
   };
 
 
@@ -300,6 +299,10 @@ namespace bsmpm
   /** The registered support methods by name, in alphabetical order. */
   const std::map<std::string, SupportMethodEntry> &
   registered_support_methods();
+
+  /** Their names, separated by '|': the values of "Dirichlet method". */
+  std::string
+  support_method_names();
 } // namespace bsmpm
 
 /**
