@@ -2,6 +2,7 @@
 
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/boundary/boundary_curves.h>
+#include <bsmpm/boundary/support_method.h>
 
 #include <algorithm>
 #include <cmath>
@@ -151,7 +152,7 @@ namespace bsmpm
                           "corner (besides those detected).");
         prm.declare_entry("Dirichlet method",
                           "implicit boundary",
-                          Patterns::Selection("implicit boundary|nitsche"),
+                          Patterns::Selection(support_method_names()),
                           "How the supports of this curve (fixed, roller, "
                           "displacement, normal displacement) are imposed: by "
                           "the implicit boundary method (paper Sec. 3.5; its "
@@ -245,10 +246,7 @@ namespace bsmpm
             for (const auto i : ParameterTools::get_unsigned(prm, "Corners"))
               curve.corners.push_back(i);
             curve.trims_material_points = prm.get_bool("Trim material points");
-            curve.dirichlet_method =
-              prm.get("Dirichlet method") == "nitsche" ?
-                BoundaryCurve::DirichletMethod::nitsche :
-                BoundaryCurve::DirichletMethod::implicit_boundary;
+            curve.dirichlet_method      = prm.get("Dirichlet method");
             for (const std::string name :
                  {"Condition", "Condition 2", "Condition 3", "Condition 4"})
               if (!Utilities::trim(prm.get(name)).empty())
@@ -424,11 +422,10 @@ namespace bsmpm
 
 
   void
-  BoundaryCurves::mark_support_cells(
-    const BackgroundGrid                &grid,
-    const BoundaryCurve::DirichletMethod method,
-    const bool                           both_components_only,
-    std::vector<bool>                   &cells) const
+  BoundaryCurves::mark_support_cells(const BackgroundGrid &grid,
+                                     const std::string    &method,
+                                     const bool            both_components_only,
+                                     std::vector<bool>    &cells) const
   {
     for (const auto &curve : curves)
       if (curve.dirichlet_method == method)
@@ -448,11 +445,10 @@ namespace bsmpm
 
 
   bool
-  BoundaryCurves::has_supports(
-    const BoundaryCurve::DirichletMethod method) const
+  BoundaryCurves::has_supports(const std::string &method) const
   {
     for (const auto &curve : curves)
-      if (curve.dirichlet_method == method)
+      if (method.empty() || curve.dirichlet_method == method)
         for (const auto &condition : curve.conditions)
           if (condition.is_support())
             return true;

@@ -41,14 +41,24 @@ namespace bsmpm
 
 
   CurvePieceValues::Filter
-  CurvePieceValues::supports_by(const BoundaryCurve::DirichletMethod method,
-                                const BoundaryCurve                 *only)
+  CurvePieceValues::supports_by(const std::string   &method,
+                                const BoundaryCurve *only)
   {
     return [method, only](const BoundaryCurve  &curve,
                           const CurveCondition *condition) {
       return condition != nullptr && condition->is_support() &&
              curve.dirichlet_method == method &&
              (only == nullptr || &curve == only);
+    };
+  }
+
+
+
+  CurvePieceValues::Filter
+  CurvePieceValues::free_pieces()
+  {
+    return [](const BoundaryCurve &, const CurveCondition *condition) {
+      return condition == nullptr;
     };
   }
 

@@ -25,12 +25,14 @@ namespace bsmpm
         {gradient[0][0], gradient[1][1], gradient[0][1] + gradient[1][0]});
     }
 
+    /** The registered name of the implicit boundary method. */
+    constexpr char implicit_boundary_name[] = "implicit boundary";
+
     bool
     is_ibm_support(const BoundaryCurve &curve, const CurveCondition *condition)
     {
       return condition != nullptr && condition->is_support() &&
-             curve.dirichlet_method ==
-               BoundaryCurve::DirichletMethod::implicit_boundary;
+             curve.dirichlet_method == implicit_boundary_name;
     }
 
     /**
@@ -81,8 +83,7 @@ namespace bsmpm
 
 
   ImplicitBoundary::ImplicitBoundary()
-    : SupportMethod("implicit boundary",
-                    BoundaryCurve::DirichletMethod::implicit_boundary)
+    : SupportMethod(implicit_boundary_name)
   {}
 
 
@@ -188,8 +189,7 @@ namespace bsmpm
     // Every process holds every curve: the check is collective.
     if (formulation != Formulation::consistent)
       for (const auto &curve : curves.get_curves())
-        if (curve.dirichlet_method ==
-            BoundaryCurve::DirichletMethod::implicit_boundary)
+        if (imposes(curve))
           for (const auto &condition : curve.conditions)
             AssertThrow(
               condition.kind != CurveCondition::Kind::normal_displacement,
@@ -211,7 +211,7 @@ namespace bsmpm
     // nobody, so these forms are refused rather than run wrong.
     if (finite_strain && formulation != Formulation::consistent)
       AssertThrow(
-        !curves.has_supports(BoundaryCurve::DirichletMethod::implicit_boundary),
+        !used_by(curves),
         ExcMessage(
           "Implicit boundary/Formulation = " +
           std::string(formulation == Formulation::frame ? "D-scaled" :
@@ -237,211 +237,264 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector                    &rhs,
     const BoundaryCurve                              *only)
   {
-    const BoundaryCurves  &curves        = context.curves;
-    const BackgroundGrid  &grid          = context.grid;
-    const Q1CellKernel    &kernel        = context.kernel;
-    const Tensor<2, 3>    &C             = context.material.stiffness();
-    const ExactSolution   *exact         = context.exact_solution;
-    const bool             finite_strain = context.finite_strain;
-    constexpr unsigned int n             = Q1CellKernel::dofs_per_cell;
-    check_formulation(curves, finite_strain);
-    // One function for the three formulations (about 200 lines): they share
-    // the pieces, the band's geometry at each Gauss point and its band
-    // points, and differ only in the band strain at a band point, which
-    // reads best next to the other.
+    check_formulation(context.curves, context.finite_strain);
+    // The three formulations share the pieces, the band's geometry at each
+    // Gauss point and its band points, and differ only in the terms at a
+    // band point (add_nearest_point_terms(), add_d_scaled_terms()).
     points.clear();
     last_increment_factor = increment_factor;
-    last_exact            = exact;
-    std::string     problem;
-    const double    delta = band_width(grid);
-    const QGauss<1> along(points_along), across(points_across);
-
-    FullMatrix<double>        cell_matrix(n, n);
-    Vector<double>            cell_rhs(n);
-    std::array<Voigt, n>      B1, B2, CB1, CB2;
+    last_exact            = context.exact_solution;
+    std::string               problem;
+    const Q1CellKernel       &kernel = context.kernel;
+    const double              delta  = band_width(context.grid);
+    const QGauss<1>           across(points_across);
     Q1CellKernel::LocalVector da;
-    CurvePieceValues          values(grid, along);
     BoundaryFrame             frame;
+    const QGauss<1>           along(points_along);
 
-    for (const auto &piece : supported_pieces(values, curves, only))
+    // The band terms of one piece: for each Gauss point along it its
+    // frame and the stress of the previous steps, for each band point
+    // across the terms of the formulation.
+    const auto piece_terms = [&](const CurvePieceValues &values,
+                                 FullMatrix<double>     &cell_matrix,
+                                 Vector<double>         &cell_rhs) {
+      const LocallyOwnedCurvePiece &piece     = values.get_piece();
+      const CurveCondition         *condition = piece.condition;
+      if (prescribed)
+        for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+          da[i] = (*prescribed)(values.dof_indices()[i]);
+      // A roller and a prescribed normal displacement hold the normal
+      // component only.
+      const bool roller  = condition->holds_normal_component_only();
+      const bool imposes = formulation == Formulation::consistent &&
+                           condition->prescribes_displacement();
+      const std::optional<Point<2>> centroid = bbar_point(moments, piece);
+      for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
+        {
+          boundary_frame(values,
+                         q,
+                         kernel,
+                         imposes ? condition : nullptr,
+                         increment_factor,
+                         context.exact_solution,
+                         frame);
+          const Point<2> &c = values.position(q);
+          if (imposes && problem.empty() &&
+              !(std::isfinite(frame.g[0]) && std::isfinite(frame.g[1])))
+            problem = condition->where +
+                      ": the prescribed displacement is not finite at (" +
+                      std::to_string(c[0]) + ", " + std::to_string(c[1]) +
+                      "): check the expression.";
+          // The boundary's stress from the previous steps: the band's
+          // share of the internal force, int B2^T sigma, which carries
+          // the support's reaction from step to step.
+          BandPointTerms point{frame,
+                               {},
+                               roller,
+                               imposes,
+                               {},
+                               piece.curve->stress_at(piece.segment,
+                                                      values.parameter(q)),
+                               centroid};
+          for (unsigned int r = 0; r < across.size(); ++r)
+            {
+              point.sample = band_sample(
+                values, q, frame.normal, across, r, delta, context.grid);
+              points.push_back({point.sample.position,
+                                point.sample.D,
+                                point.sample.weight,
+                                piece.owned_cell->active_cell_index(),
+                                point.sample.cell_coordinates});
+              // Finite strain: the consistent band's terms come per
+              // Newton iteration (add_finite_strain_terms()).
+              if (context.finite_strain &&
+                  formulation == Formulation::consistent)
+                continue;
+              point.strain_a = Voigt();
+              if (prescribed)
+                for (unsigned int i = 0; i < Q1CellKernel::dofs_per_cell; ++i)
+                  point.strain_a +=
+                    da[i] *
+                    kernel.strain_column(i, point.sample.cell_coordinates);
+              if (formulation == Formulation::consistent)
+                add_nearest_point_terms(context, point, cell_matrix, cell_rhs);
+              else
+                add_d_scaled_terms(context, point, cell_matrix, cell_rhs);
+            }
+        }
+    };
+    add_piece_terms(
+      context, along, only, constraints, &matrix, rhs, piece_terms);
+    ParameterTools::throw_if_any(problem, context.grid.mpi_communicator());
+  }
+
+
+
+  void
+  ImplicitBoundary::add_nearest_point_terms(const Context        &context,
+                                            const BandPointTerms &point,
+                                            FullMatrix<double>   &cell_matrix,
+                                            Vector<double> &cell_rhs) const
+  {
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
+    const BandSample      &sample = point.sample;
+    const Point<2>        &st     = sample.cell_coordinates;
+    const double           w      = sample.weight;
+    const BoundaryFrame   &frame  = point.frame;
+    const Q1CellKernel    &kernel = context.kernel;
+    const Tensor<2, 3>    &C      = context.material.stiffness();
+    std::array<Voigt, n>   B1, B2, CB1, CB2;
+    // u = w - (1 - D) P w(c): its strain is B + Delta, with Delta the
+    // band's correction to the regular strain B, which the material points
+    // integrate. A fixed or prescribed support keeps the normal part of
+    // Delta only: the tangential part, -(1 - D) dw(c)/dt (x) t, integrates
+    // across the band to (delta / 3) dw/dt, whose sum along a side leaves
+    // (delta / 3) w . sigma t at its ends: at a corner of two displacement
+    // supports the tangents differ and a linear field is off by O(delta)
+    // (doc/implicit-boundary.md, "The band at corners"). Without it,
+    // int Delta^T sigma over the band is exactly the boundary flux
+    // int w . sigma n, corners or not.
+    for (unsigned int i = 0; i < n; ++i)
       {
-        values.reinit(piece);
-        const CurveCondition *condition   = piece.condition;
-        const auto           &cell        = piece.owned_cell;
-        const auto           &dof_indices = values.dof_indices();
-        if (prescribed)
-          for (unsigned int i = 0; i < n; ++i)
-            da[i] = (*prescribed)(dof_indices[i]);
-
-        // A roller and a prescribed normal displacement hold the normal
-        // component only.
-        const bool roller  = condition->holds_normal_component_only();
-        const bool imposes = formulation == Formulation::consistent &&
-                             condition->prescribes_displacement();
+        B1[i] = kernel.strain_column(i, st);
+        B2[i] =
+          voigt(frame.band_correction(i, sample.D, sample.dD, point.roller));
         // B-bar: the regular strain's stress takes the volumetric strain
-        // at the centroid of the cell's material, as the points'
-        // stiffness does (Q1CellKernel::stress_column()).
-        const Point<2> centroid =
-          moments != nullptr ?
-            Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
-            Point<2>();
-        cell_matrix = 0;
-        cell_rhs    = 0;
-
-        for (unsigned int q = 0; q < along.size(); ++q)
-          {
-            const Point<2> &c  = values.position(q);
-            const double    ds = values.JxW(q);
-            boundary_frame(values,
-                           q,
-                           kernel,
-                           imposes ? condition : nullptr,
-                           increment_factor,
-                           exact,
-                           frame);
-            const Tensor<1, 2> &normal = frame.normal, &tangent = frame.tangent;
-            const Tensor<2, 2> &nn    = frame.nn;
-            const auto         &trace = frame.trace, &trace_dt = frame.trace_dt;
-            const Tensor<1, 2> &g = frame.g, &dg_dt = frame.dg_dt;
-            if (imposes && problem.empty() &&
-                !(std::isfinite(g[0]) && std::isfinite(g[1])))
-              problem = condition->where +
-                        ": the prescribed displacement is not finite at (" +
-                        std::to_string(c[0]) + ", " + std::to_string(c[1]) +
-                        "): check the expression.";
-            // The boundary's stress from the previous steps: the band's
-            // share of the internal force, int B2^T sigma, which carries
-            // the support's reaction from step to step.
-            const Voigt sigma_previous =
-              piece.curve->stress_at(piece.segment, values.parameter(q));
-
-            for (unsigned int r = 0; r < across.size(); ++r)
-              {
-                const double   phi = delta * across.point(r)[0];
-                const double   w   = ds * delta * across.weight(r);
-                const double   D   = d_function(phi, delta);
-                const double   dD  = d_function_derivative(phi, delta);
-                const Point<2> x   = c + phi * normal;
-                const Point<2> st  = grid.local_coordinates(x, piece.cell);
-                points.push_back({x, D, w, cell->active_cell_index(), st});
-                // Finite strain: the consistent band's terms come per
-                // Newton iteration (add_finite_strain_terms()).
-                if (finite_strain && formulation == Formulation::consistent)
-                  continue;
-
-                Voigt strain_a;
-                if (prescribed)
-                  for (unsigned int i = 0; i < n; ++i)
-                    strain_a += da[i] * kernel.strain_column(i, st);
-
-                if (formulation == Formulation::consistent)
-                  {
-                    // u = w - (1 - D) P w(c): its strain is B + Delta,
-                    // with Delta the band's correction to the regular
-                    // strain B, which the material points integrate.
-                    for (unsigned int i = 0; i < n; ++i)
-                      {
-                        B1[i] = kernel.strain_column(i, st);
-                        if (roller)
-                          B2[i] = voigt(dD * (trace[i] * normal) * nn -
-                                        (1 - D) * (trace_dt[i] * normal) *
-                                          outer_product(normal, tangent));
-                        else
-                          // A fixed or prescribed support keeps the
-                          // normal part only: the tangential part,
-                          // -(1 - D) dw(c)/dt (x) t, integrates across
-                          // the band to (delta / 3) dw/dt, whose sum
-                          // along a side leaves (delta / 3) w . sigma t
-                          // at its ends: at a corner of two displacement
-                          // supports the tangents differ and a linear
-                          // field is off by O(delta) (doc/
-                          // implicit-boundary.md, "The band at corners").
-                          // Without it, int Delta^T sigma over the band is
-                          // exactly the boundary flux int w . sigma n,
-                          // corners or not.
-                          B2[i] = voigt(dD * outer_product(trace[i], normal));
-                        CB1[i] = kernel.stress_column(
-                          i, st, moments != nullptr ? centroid : st);
-                        CB2[i] = C * B2[i];
-                      }
-                    // (B + Delta)^T C (B + Delta) - B^T C B, with B-bar
-                    // (Bbar + Delta)^T C (Bbar + Delta) - Bbar^T C Bbar:
-                    // Delta has no zz part, so Bbar^T C Delta is the
-                    // B-bar stress of B times Delta.
-                    for (unsigned int i = 0; i < n; ++i)
-                      for (unsigned int j = 0; j < n; ++j)
-                        cell_matrix(i, j) +=
-                          w *
-                          (CB1[i] * B2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
-                    // Band part of f^d, int Delta^T C B d^a, and of the
-                    // internal force.
-                    const Voigt sigma = sigma_previous + C * strain_a;
-                    for (unsigned int i = 0; i < n; ++i)
-                      cell_rhs[i] -= w * B2[i] * sigma;
-                    // u = w - (1 - D) P (w(c) - g), P g = g: the band
-                    // strain of g, Delta_g, enters the energy like a
-                    // prescribed strain.
-                    if (imposes)
-                      {
-                        // The same band strain as that of w (no
-                        // tangential part for a full displacement), so
-                        // that w(c) = g(c) leaves no band strain at all.
-                        const Voigt strain_g =
-                          roller ?
-                            voigt(dD * outer_product(g, normal) -
-                                  (1 - D) * outer_product(dg_dt, tangent)) :
-                            voigt(dD * outer_product(g, normal));
-                        const Voigt sigma_g = C * strain_g;
-                        for (unsigned int i = 0; i < n; ++i)
-                          cell_rhs[i] +=
-                            w * (CB1[i] * strain_g + B2[i] * sigma_g);
-                      }
-                    continue;
-                  }
-
-                // u = P(D) w: grad u = P grad w + (dP/dphi) w (x) n.
-                Tensor<2, 2> P, dP;
-                if (roller)
-                  {
-                    P  = unit_symmetric_tensor<2>() + (D - 1) * nn;
-                    dP = dD * nn;
-                  }
-                else
-                  {
-                    P  = D * unit_symmetric_tensor<2>();
-                    dP = dD * unit_symmetric_tensor<2>();
-                  }
-                for (unsigned int i = 0; i < n; ++i)
-                  {
-                    const Tensor<1, 2> value = kernel.shape_value(i, st);
-                    B1[i] = voigt(P * kernel.shape_gradient(i, st));
-                    if (roller && formulation == Formulation::paper)
-                      // eqs. 23-26: (d D / d x, d D / d y) of the normal
-                      // component, which J_T extracts from w.
-                      B2[i] = dD * (normal * value) *
-                              Voigt({normal[0], 0., normal[1]});
-                    else
-                      B2[i] = voigt(outer_product(dP * value, normal));
-                    CB1[i] = C * B1[i];
-                    CB2[i] = C * B2[i];
-                  }
-                // k2 + k2^T + k3 (eqs. 24, 25).
-                for (unsigned int i = 0; i < n; ++i)
-                  for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) +=
-                      w * (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
-                // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33),
-                // and of the internal force.
-                const Voigt sigma_a = C * strain_a;
-                for (unsigned int i = 0; i < n; ++i)
-                  cell_rhs[i] -=
-                    w * ((B1[i] + B2[i]) * sigma_a + B2[i] * sigma_previous);
-              }
-          }
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_rhs, dof_indices, matrix, rhs);
+        // at the centroid of the cell's material, as the points' stiffness
+        // does.
+        CB1[i] = kernel.stress_column(i, st, point.bbar_point.value_or(st));
+        CB2[i] = C * B2[i];
       }
-    ParameterTools::throw_if_any(problem, grid.mpi_communicator());
+    // (B + Delta)^T C (B + Delta) - B^T C B, with B-bar
+    // (Bbar + Delta)^T C (Bbar + Delta) - Bbar^T C Bbar:
+    // Delta has no zz part, so Bbar^T C Delta is the
+    // B-bar stress of B times Delta.
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        cell_matrix(i, j) +=
+          w * (CB1[i] * B2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+    // Band part of f^d, int Delta^T C B d^a, and of the internal force.
+    const Voigt sigma = point.sigma_previous + C * point.strain_a;
+    for (unsigned int i = 0; i < n; ++i)
+      cell_rhs[i] -= w * B2[i] * sigma;
+    // u = w - (1 - D) P (w(c) - g), P g = g: the band strain of g,
+    // Delta_g, enters the energy like a prescribed strain. It is the same
+    // band strain as that of w (no tangential part for a full
+    // displacement), so that w(c) = g(c) leaves no band strain at all.
+    if (point.imposes)
+      {
+        const Voigt strain_g = voigt(
+          frame.prescribed_band_correction(sample.D, sample.dD, point.roller));
+        const Voigt sigma_g = C * strain_g;
+        for (unsigned int i = 0; i < n; ++i)
+          cell_rhs[i] += w * (CB1[i] * strain_g + B2[i] * sigma_g);
+      }
+  }
+
+
+
+  void
+  ImplicitBoundary::add_d_scaled_terms(const Context        &context,
+                                       const BandPointTerms &point,
+                                       FullMatrix<double>   &cell_matrix,
+                                       Vector<double>       &cell_rhs) const
+  {
+    const Q1CellKernel    &kernel = context.kernel;
+    const Tensor<2, 3>    &C      = context.material.stiffness();
+    const BoundaryFrame   &frame  = point.frame;
+    const BandSample      &sample = point.sample;
+    const bool             roller = point.roller;
+    constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
+    const Point<2>        &st     = sample.cell_coordinates;
+    const double           w = sample.weight, D = sample.D, dD = sample.dD;
+    const Tensor<1, 2>    &normal = frame.normal;
+    std::array<Voigt, n>   B1, B2, CB1, CB2;
+    // u = P(D) w: grad u = P grad w + (dP/dphi) w (x) n.
+    Tensor<2, 2> P, dP;
+    if (roller)
+      {
+        P  = unit_symmetric_tensor<2>() + (D - 1) * frame.nn;
+        dP = dD * frame.nn;
+      }
+    else
+      {
+        P  = D * unit_symmetric_tensor<2>();
+        dP = dD * unit_symmetric_tensor<2>();
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Tensor<1, 2> value = kernel.shape_value(i, st);
+        B1[i]                    = voigt(P * kernel.shape_gradient(i, st));
+        if (roller && formulation == Formulation::paper)
+          // eqs. 23-26: (d D / d x, d D / d y) of the normal
+          // component, which J_T extracts from w.
+          B2[i] = dD * (normal * value) * Voigt({normal[0], 0., normal[1]});
+        else
+          B2[i] = voigt(outer_product(dP * value, normal));
+        CB1[i] = C * B1[i];
+        CB2[i] = C * B2[i];
+      }
+    // k2 + k2^T + k3 (eqs. 24, 25).
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        cell_matrix(i, j) +=
+          w * (B1[i] * CB2[j] + B2[i] * CB1[j] + B2[i] * CB2[j]);
+    // Band part of f^d = int (B1 + B2)^T C B d^a (eq. 33), and of the
+    // internal force.
+    const Voigt sigma_a = C * point.strain_a;
+    for (unsigned int i = 0; i < n; ++i)
+      cell_rhs[i] -=
+        w * ((B1[i] + B2[i]) * sigma_a + B2[i] * point.sigma_previous);
+  }
+
+
+
+  Tensor<2, 2>
+  ImplicitBoundary::BoundaryFrame::band_correction(const unsigned int i,
+                                                   const double       D,
+                                                   const double       dD,
+                                                   const bool roller) const
+  {
+    if (roller)
+      return dD * (trace[i] * normal) * nn -
+             (1 - D) * (trace_dt[i] * normal) * outer_product(normal, tangent);
+    return dD * outer_product(trace[i], normal);
+  }
+
+
+
+  Tensor<2, 2>
+  ImplicitBoundary::BoundaryFrame::prescribed_band_correction(
+    const double D,
+    const double dD,
+    const bool   roller) const
+  {
+    if (roller)
+      return dD * outer_product(g, normal) -
+             (1 - D) * outer_product(dg_dt, tangent);
+    return dD * outer_product(g, normal);
+  }
+
+
+
+  ImplicitBoundary::BandSample
+  ImplicitBoundary::band_sample(const CurvePieceValues &values,
+                                const unsigned int      q,
+                                const Tensor<1, 2>     &normal,
+                                const Quadrature<1>    &across,
+                                const unsigned int      r,
+                                const double            delta,
+                                const BackgroundGrid   &grid) const
+  {
+    const double phi = delta * across.point(r)[0];
+    BandSample   sample;
+    sample.position = values.position(q) + phi * normal;
+    sample.cell_coordinates =
+      grid.local_coordinates(sample.position, values.get_piece().cell);
+    sample.weight = values.JxW(q) * delta * across.weight(r);
+    sample.D      = d_function(phi, delta);
+    sample.dD     = d_function_derivative(phi, delta);
+    return sample;
   }
 
 
@@ -458,142 +511,121 @@ namespace bsmpm
   {
     if (formulation != Formulation::consistent)
       return;
-    const BoundaryCurves  &curves = context.curves;
-    const BackgroundGrid  &grid   = context.grid;
     const Q1CellKernel    &kernel = context.kernel;
     constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
-    const double           delta  = band_width(grid);
-    const QGauss<1>        along(points_along), across(points_across);
+    const double           delta  = band_width(context.grid);
+    const QGauss<1>        across(points_across);
 
-    FullMatrix<double>        cell_matrix(n, n);
-    Vector<double>            cell_force(n);
     Q1CellKernel::LocalVector d;
     // Per shape function: its gradient G, its band correction Delta, the
     // band's gradient G + Delta, and A : (G + Delta), A : G.
     std::array<Tensor<2, 2>, n> G, Delta, T, AT, AG;
-    CurvePieceValues            values(grid, along);
     BoundaryFrame               frame;
 
-    for (const auto &piece : supported_pieces(values, curves, only))
-      {
-        values.reinit(piece);
-        const CurveCondition *condition   = piece.condition;
-        const auto           &dof_indices = values.dof_indices();
-        for (unsigned int i = 0; i < n; ++i)
-          d[i] = increment(dof_indices[i]);
-        const bool roller  = condition->holds_normal_component_only();
-        const bool imposes = condition->prescribes_displacement();
-        cell_matrix        = 0;
-        cell_force         = 0;
+    const QGauss<1> along(points_along);
 
-        for (unsigned int q = 0; q < along.size(); ++q)
-          {
-            // The geometry and prescribed data of assemble().
-            const Point<2> &c  = values.position(q);
-            const double    ds = values.JxW(q);
-            boundary_frame(values,
-                           q,
-                           kernel,
-                           imposes ? condition : nullptr,
-                           last_increment_factor,
-                           last_exact,
-                           frame);
-            const Tensor<1, 2> &normal   = frame.normal,
-                               &tangent_ = frame.tangent;
-            const Tensor<2, 2> &nn       = frame.nn;
-            const auto         &trace = frame.trace, &trace_dt = frame.trace_dt;
-            const Tensor<1, 2> &g = frame.g, &dg_dt = frame.dg_dt;
-            // The state of the boundary as of the step's start.
-            const std::vector<double> props =
-              piece.curve->state_at(piece.segment, values.parameter(q));
-            const ArrayView<const double> state(props.data(), props.size());
+    // The finite-strain band terms of one piece, at the increment d on
+    // its cell.
+    const auto piece_terms = [&](const CurvePieceValues &values,
+                                 FullMatrix<double>     &cell_matrix,
+                                 Vector<double>         &cell_force) {
+      const LocallyOwnedCurvePiece &piece     = values.get_piece();
+      const CurveCondition         *condition = piece.condition;
+      for (unsigned int i = 0; i < n; ++i)
+        d[i] = increment(values.dof_indices()[i]);
+      const bool roller  = condition->holds_normal_component_only();
+      const bool imposes = condition->prescribes_displacement();
 
-            for (unsigned int r = 0; r < across.size(); ++r)
-              {
-                const double   phi = delta * across.point(r)[0];
-                const double   w   = ds * delta * across.weight(r);
-                const double   D   = d_function(phi, delta);
-                const double   dD  = d_function_derivative(phi, delta);
-                const Point<2> x   = c + phi * normal;
-                const Point<2> st  = grid.local_coordinates(x, piece.cell);
-                // The band corrections of assemble() as full gradients
-                // (its strains are their symmetric parts), and the
-                // band's mismatch E = Delta(d) - Delta_g.
-                Tensor<2, 2> f = unit_symmetric_tensor<2>(), E;
-                for (unsigned int i = 0; i < n; ++i)
-                  {
-                    G[i]     = kernel.shape_gradient(i, st);
-                    Delta[i] = roller ? dD * (trace[i] * normal) * nn -
-                                          (1 - D) * (trace_dt[i] * normal) *
-                                            outer_product(normal, tangent_) :
-                                        dD * outer_product(trace[i], normal);
-                    T[i]     = G[i] + Delta[i];
-                    f += d[i] * G[i];
-                    E += d[i] * Delta[i];
-                  }
-                if (imposes)
-                  E -= roller ? dD * outer_product(g, normal) -
-                                  (1 - D) * outer_product(dg_dt, tangent_) :
-                                dD * outer_product(g, normal);
-                // P(f + E) linearised about the grid's f: E is the
-                // constraint's, of order (w(x_b) - g) / delta, and would
-                // invert the band long before Newton has met the support
-                // (doc/finite-strain.md, "Supports in finite strain").
-                Tensor<2, 2> P;
-                Tensor<4, 2> A;
-                // An inverted point is left out; @p stress reports it
-                // to the solver, which rejects the increment.
-                if (!stress(state, f, P, A))
-                  continue;
-                const Tensor<2, 2> AE = contract(A, E);
-                for (unsigned int i = 0; i < n; ++i)
-                  cell_force[i] += w * (scalar_product(P, Delta[i]) +
-                                        scalar_product(AE, T[i]));
-                if (tangent == nullptr)
-                  continue;
-                // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
-                // latter D_E A(f) : G_j (second derivatives commute), by
-                // central differences along E. That part is of the order
-                // of E, the support's mismatch over the band width: where
-                // the mismatch is a sizeable part of the cell (the first
-                // iterations of a step that imposes a large displacement:
-                // |E| delta / h about 1 at the start of a 30 %
-                // compression in one step), it made the first correction
-                // some 25 times too long (8 m for an imposed 0.27 m),
-                // inverting points, and the step was cut three times.
-                // So it joins the tangent only once the mismatch is below
-                // 1e-2 h, where it keeps Newton quadratic
-                // (doc/finite-strain.md, "Supports in finite strain").
-                Tensor<4, 2> dA_E;
-                const double size = E.norm();
-                if (size > 0 && size * relative_band_width <= 1e-2)
-                  {
-                    const double h = 1e-5 / size;
-                    Tensor<2, 2> P_other;
-                    Tensor<4, 2> A_plus, A_minus;
-                    if (stress(state, f + h * E, P_other, A_plus) &&
-                        stress(state, f - h * E, P_other, A_minus))
-                      dA_E = (A_plus - A_minus) / (2 * h);
-                  }
+      for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
+        {
+          // The geometry and prescribed data of assemble().
+          boundary_frame(values,
+                         q,
+                         kernel,
+                         imposes ? condition : nullptr,
+                         last_increment_factor,
+                         last_exact,
+                         frame);
+          // The state of the boundary as of the step's start.
+          const std::vector<double> props =
+            piece.curve->state_at(piece.segment, values.parameter(q));
+          const ArrayView<const double> state(props.data(), props.size());
+
+          for (unsigned int r = 0; r < across.size(); ++r)
+            {
+              const BandSample sample = band_sample(
+                values, q, frame.normal, across, r, delta, context.grid);
+              const double w = sample.weight;
+              // The band corrections of assemble() as full gradients
+              // (its strains are their symmetric parts), and the
+              // band's mismatch E = Delta(d) - Delta_g.
+              Tensor<2, 2> f = unit_symmetric_tensor<2>(), E;
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  G[i] = kernel.shape_gradient(i, sample.cell_coordinates);
+                  Delta[i] =
+                    frame.band_correction(i, sample.D, sample.dD, roller);
+                  T[i] = G[i] + Delta[i];
+                  f += d[i] * G[i];
+                  E += d[i] * Delta[i];
+                }
+              if (imposes)
+                E -=
+                  frame.prescribed_band_correction(sample.D, sample.dD, roller);
+              // P(f + E) linearised about the grid's f: E is the
+              // constraint's, of order (w(x_b) - g) / delta, and would
+              // invert the band long before Newton has met the support
+              // (doc/finite-strain.md, "Supports in finite strain").
+              Tensor<2, 2> P;
+              Tensor<4, 2> A;
+              // An inverted point is left out; @p stress reports it
+              // to the solver, which rejects the increment.
+              if (!stress(state, f, P, A))
+                continue;
+              const Tensor<2, 2> AE = contract(A, E);
+              for (unsigned int i = 0; i < n; ++i)
+                cell_force[i] +=
+                  w * (scalar_product(P, Delta[i]) + scalar_product(AE, T[i]));
+              if (tangent == nullptr)
+                continue;
+              // d(A : E)/d d_j = A : Delta_j + (dA/df : G_j) : E, the
+              // latter D_E A(f) : G_j (second derivatives commute), by
+              // central differences along E. That part is of the order
+              // of E, the support's mismatch over the band width: where
+              // the mismatch is a sizeable part of the cell (the first
+              // iterations of a step that imposes a large displacement:
+              // |E| delta / h about 1 at the start of a 30 %
+              // compression in one step), it made the first correction
+              // some 25 times too long (8 m for an imposed 0.27 m),
+              // inverting points, and the step was cut three times.
+              // So it joins the tangent only once the mismatch is below
+              // 1e-2 h, where it keeps Newton quadratic
+              // (doc/finite-strain.md, "Supports in finite strain").
+              Tensor<4, 2> dA_E;
+              const double size = E.norm();
+              if (size > 0 && size * relative_band_width <= 1e-2)
+                {
+                  const double h = 1e-5 / size;
+                  Tensor<2, 2> P_other;
+                  Tensor<4, 2> A_plus, A_minus;
+                  if (stress(state, f + h * E, P_other, A_plus) &&
+                      stress(state, f - h * E, P_other, A_minus))
+                    dA_E = (A_plus - A_minus) / (2 * h);
+                }
+              for (unsigned int j = 0; j < n; ++j)
+                {
+                  AT[j] = contract(A, Delta[j]) + contract(dA_E, G[j]);
+                  AG[j] = contract(A, G[j]);
+                }
+              for (unsigned int i = 0; i < n; ++i)
                 for (unsigned int j = 0; j < n; ++j)
-                  {
-                    AT[j] = contract(A, Delta[j]) + contract(dA_E, G[j]);
-                    AG[j] = contract(A, G[j]);
-                  }
-                for (unsigned int i = 0; i < n; ++i)
-                  for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) += w * (scalar_product(AG[j], Delta[i]) +
-                                              scalar_product(AT[j], T[i]));
-              }
-          }
-        if (tangent != nullptr)
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_force, dof_indices, *tangent, internal_force);
-        else
-          constraints.distribute_local_to_global(cell_force,
-                                                 dof_indices,
-                                                 internal_force);
-      }
+                  cell_matrix(i, j) += w * (scalar_product(AG[j], Delta[i]) +
+                                            scalar_product(AT[j], T[i]));
+            }
+        }
+    };
+    add_piece_terms(
+      context, along, only, constraints, tangent, internal_force, piece_terms);
   }
 
 
@@ -641,8 +673,7 @@ namespace bsmpm
   ImplicitBoundary::prescribes_displacement(const BoundaryCurves &curves)
   {
     for (const auto &curve : curves.get_curves())
-      if (curve.dirichlet_method ==
-          BoundaryCurve::DirichletMethod::implicit_boundary)
+      if (curve.dirichlet_method == implicit_boundary_name)
         for (const auto &condition : curve.conditions)
           if (condition.kind == CurveCondition::Kind::displacement)
             return true;

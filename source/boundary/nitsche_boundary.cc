@@ -27,7 +27,7 @@ namespace bsmpm
 
 
   NitscheBoundary::NitscheBoundary()
-    : SupportMethod("nitsche", BoundaryCurve::DirichletMethod::nitsche)
+    : SupportMethod("nitsche")
   {}
 
 
@@ -79,11 +79,9 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector   &rhs,
     const BoundaryCurve             *only)
   {
-    const BoundaryCurves  &curves        = context.curves;
-    const BackgroundGrid  &grid          = context.grid;
-    const Q1CellKernel    &kernel        = context.kernel;
-    const ExactSolution   *exact         = context.exact_solution;
-    const bool             finite_strain = context.finite_strain;
+    const BackgroundGrid  &grid   = context.grid;
+    const Q1CellKernel    &kernel = context.kernel;
+    const ExactSolution   *exact  = context.exact_solution;
     std::string            problem;
     constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
@@ -95,87 +93,76 @@ namespace bsmpm
     const double beta =
       penalty * context.material.penalty_modulus() / grid.min_cell_size();
 
-    FullMatrix<double>          cell_matrix(n, n);
-    Vector<double>              cell_rhs(n);
     std::array<Tensor<1, 2>, n> value, stress_n;
-    CurvePieceValues            values(grid, gauss);
 
-    for (const auto &piece : supported_pieces(values, curves, only))
-      {
-        values.reinit(piece);
-        const CurveCondition *condition = piece.condition;
-        const auto           &cell      = piece.owned_cell;
+    // The Nitsche terms of one piece.
+    const auto piece_terms = [&](const CurvePieceValues &values,
+                                 FullMatrix<double>     &cell_matrix,
+                                 Vector<double>         &cell_rhs) {
+      const LocallyOwnedCurvePiece &piece     = values.get_piece();
+      const CurveCondition         *condition = piece.condition;
+      // A roller and a prescribed normal displacement hold the normal
+      // component only.
+      const bool roller = condition->holds_normal_component_only();
+      // B-bar: the volumetric strain at the centroid of the cell's
+      // material; without moments the point's own (the standard stress).
+      const std::optional<Point<2>> centroid = bbar_point(moments, piece);
 
-        // A roller and a prescribed normal displacement hold the normal
-        // component only.
-        const bool roller = condition->holds_normal_component_only();
-        // B-bar: the volumetric strain at the centroid of the cell's
-        // material (Q1CellKernel::stress_column()); without moments the
-        // point's own (the standard stress).
-        const Point<2> centroid =
-          moments != nullptr ?
-            Q1CellKernel::centroid((*moments)[cell->active_cell_index()]) :
-            Point<2>();
-        cell_matrix = 0;
-        cell_rhs    = 0;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          const double        u  = values.parameter(q);
+          const Point<2>     &x  = values.position(q);
+          const Tensor<1, 2> &nv = values.normal(q);
+          const double        ds = values.JxW(q);
+          const Point<2>     &st = values.local_coordinates(q);
 
-        for (unsigned int q = 0; q < gauss.size(); ++q)
-          {
-            const double        u  = values.parameter(q);
-            const Point<2>     &x  = values.position(q);
-            const Tensor<1, 2> &nv = values.normal(q);
-            const double        ds = values.JxW(q);
-            const Point<2>     &st = values.local_coordinates(q);
+          // For a roller, all products are taken along n only.
+          const auto project = [&](const Tensor<1, 2> &v) {
+            return roller ? Tensor<1, 2>((v * nv) * nv) : v;
+          };
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              value[i] = kernel.shape_value(i, st);
+              stress_n[i] =
+                traction(kernel.stress_column(i, st, centroid.value_or(st)),
+                         nv);
+            }
+          // Finite strain: the consistency term and the reaction come
+          // per Newton iteration (add_finite_strain_terms()).
+          const double consistency = context.finite_strain ? 0. : 1.;
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < n; ++j)
+              cell_matrix(i, j) +=
+                ds * (-consistency * project(stress_n[j]) * value[i] -
+                      project(stress_n[i]) * value[j] +
+                      beta * project(value[i]) * value[j]);
 
-            // For a roller, all products are taken along n only.
-            const auto project = [&](const Tensor<1, 2> &v) {
-              return roller ? Tensor<1, 2>((v * nv) * nv) : v;
-            };
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                value[i] = kernel.shape_value(i, st);
-                stress_n[i] =
-                  traction(kernel.stress_column(
-                             i, st, moments != nullptr ? centroid : st),
-                           nv);
-              }
-            // Finite strain: the consistency term and the reaction come
-            // per Newton iteration (add_finite_strain_terms()).
-            const double consistency = finite_strain ? 0. : 1.;
-            for (unsigned int i = 0; i < n; ++i)
-              for (unsigned int j = 0; j < n; ++j)
-                cell_matrix(i, j) +=
-                  ds * (-consistency * project(stress_n[j]) * value[i] -
-                        project(stress_n[i]) * value[j] +
-                        beta * project(value[i]) * value[j]);
+          // Reaction of the previous steps.
+          const Tensor<1, 2> reaction =
+            consistency *
+            project(traction(piece.curve->stress_at(piece.segment, u), nv));
 
-            // Reaction of the previous steps.
-            const Tensor<1, 2> reaction =
-              consistency *
-              project(traction(piece.curve->stress_at(piece.segment, u), nv));
-
-            // The prescribed increment; for a normal displacement
-            // g = g_n n, so that the projected terms give
-            // (u . n - g_n) (v . n).
-            Tensor<1, 2> g;
-            if (condition->kind == CurveCondition::Kind::displacement)
-              g = increment_factor * (condition->function ?
-                                        condition->function_value(x, problem) :
-                                        exact->displacement(x));
-            else if (condition->kind ==
-                     CurveCondition::Kind::normal_displacement)
-              g = increment_factor *
-                  (condition->function ?
-                     condition->scalar_function_value(x, problem) :
-                     exact->displacement(x) * nv) *
-                  nv;
-            for (unsigned int i = 0; i < n; ++i)
-              cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
-                                   beta * value[i] * g);
-          }
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_rhs, values.dof_indices(), matrix, rhs);
-      }
+          // The prescribed increment; for a normal displacement
+          // g = g_n n, so that the projected terms give
+          // (u . n - g_n) (v . n).
+          Tensor<1, 2> g;
+          if (condition->kind == CurveCondition::Kind::displacement)
+            g = increment_factor * (condition->function ?
+                                      condition->function_value(x, problem) :
+                                      exact->displacement(x));
+          else if (condition->kind == CurveCondition::Kind::normal_displacement)
+            g = increment_factor *
+                (condition->function ?
+                   condition->scalar_function_value(x, problem) :
+                   exact->displacement(x) * nv) *
+                nv;
+          for (unsigned int i = 0; i < n; ++i)
+            cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +
+                                 beta * value[i] * g);
+        }
+    };
+    add_piece_terms(
+      context, gauss, only, constraints, &matrix, rhs, piece_terms);
     ParameterTools::throw_if_any(problem, grid.mpi_communicator());
   }
 
@@ -191,72 +178,61 @@ namespace bsmpm
     TrilinosWrappers::MPI::Vector                    &internal_force,
     const BoundaryCurve                              *only) const
   {
-    const BoundaryCurves  &curves = context.curves;
-    const BackgroundGrid  &grid   = context.grid;
     const Q1CellKernel    &kernel = context.kernel;
     constexpr unsigned int n      = Q1CellKernel::dofs_per_cell;
     const QGauss<1>        gauss(n_gauss_points);
 
-    FullMatrix<double>          cell_matrix(n, n);
-    Vector<double>              cell_force(n);
     Q1CellKernel::LocalVector   d;
     std::array<Tensor<1, 2>, n> value;
     std::array<Tensor<2, 2>, n> G;
-    CurvePieceValues            values(grid, gauss);
 
-    for (const auto &piece : supported_pieces(values, curves, only))
-      {
-        values.reinit(piece);
-        const auto &dof_indices = values.dof_indices();
-        for (unsigned int i = 0; i < n; ++i)
-          d[i] = increment(dof_indices[i]);
-        const bool roller = piece.condition->holds_normal_component_only();
-        cell_matrix       = 0;
-        cell_force        = 0;
+    // The consistency term of one piece, at the increment d on its cell.
+    const auto piece_terms = [&](const CurvePieceValues &values,
+                                 FullMatrix<double>     &cell_matrix,
+                                 Vector<double>         &cell_force) {
+      const LocallyOwnedCurvePiece &piece = values.get_piece();
+      for (unsigned int i = 0; i < n; ++i)
+        d[i] = increment(values.dof_indices()[i]);
+      const bool roller = piece.condition->holds_normal_component_only();
 
-        for (unsigned int q = 0; q < gauss.size(); ++q)
-          {
-            const double        u       = values.parameter(q);
-            const Tensor<1, 2> &nv      = values.normal(q);
-            const double        ds      = values.JxW(q);
-            const Point<2>     &st      = values.local_coordinates(q);
-            const auto          project = [&](const Tensor<1, 2> &v) {
-              return roller ? Tensor<1, 2>((v * nv) * nv) : v;
-            };
-            Tensor<2, 2> f = unit_symmetric_tensor<2>();
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                value[i] = kernel.shape_value(i, st);
-                G[i]     = kernel.shape_gradient(i, st);
-                f += d[i] * G[i];
-              }
-            const std::vector<double> props =
-              piece.curve->state_at(piece.segment, u);
-            Tensor<2, 2> P;
-            Tensor<4, 2> A;
-            if (!stress(
-                  ArrayView<const double>(props.data(), props.size()), f, P, A))
-              continue; // inverted: reported by @p stress to the solver
-            // The nominal traction P n on the curve of the step's start.
-            const Tensor<1, 2> traction_n = project(P * nv);
-            for (unsigned int i = 0; i < n; ++i)
-              cell_force[i] -= ds * (value[i] * traction_n);
-            if (tangent == nullptr)
-              continue;
-            for (unsigned int j = 0; j < n; ++j)
-              {
-                const Tensor<1, 2> dt = project(contract(A, G[j]) * nv);
-                for (unsigned int i = 0; i < n; ++i)
-                  cell_matrix(i, j) -= ds * (value[i] * dt);
-              }
-          }
-        if (tangent != nullptr)
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_force, dof_indices, *tangent, internal_force);
-        else
-          constraints.distribute_local_to_global(cell_force,
-                                                 dof_indices,
-                                                 internal_force);
-      }
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          const double        u       = values.parameter(q);
+          const Tensor<1, 2> &nv      = values.normal(q);
+          const double        ds      = values.JxW(q);
+          const Point<2>     &st      = values.local_coordinates(q);
+          const auto          project = [&](const Tensor<1, 2> &v) {
+            return roller ? Tensor<1, 2>((v * nv) * nv) : v;
+          };
+          Tensor<2, 2> f = unit_symmetric_tensor<2>();
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              value[i] = kernel.shape_value(i, st);
+              G[i]     = kernel.shape_gradient(i, st);
+              f += d[i] * G[i];
+            }
+          const std::vector<double> props =
+            piece.curve->state_at(piece.segment, u);
+          Tensor<2, 2> P;
+          Tensor<4, 2> A;
+          if (!stress(
+                ArrayView<const double>(props.data(), props.size()), f, P, A))
+            continue; // inverted: reported by @p stress to the solver
+          // The nominal traction P n on the curve of the step's start.
+          const Tensor<1, 2> traction_n = project(P * nv);
+          for (unsigned int i = 0; i < n; ++i)
+            cell_force[i] -= ds * (value[i] * traction_n);
+          if (tangent == nullptr)
+            continue;
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              const Tensor<1, 2> dt = project(contract(A, G[j]) * nv);
+              for (unsigned int i = 0; i < n; ++i)
+                cell_matrix(i, j) -= ds * (value[i] * dt);
+            }
+        }
+    };
+    add_piece_terms(
+      context, gauss, only, constraints, tangent, internal_force, piece_terms);
   }
 } // namespace bsmpm

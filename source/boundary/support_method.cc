@@ -14,10 +14,8 @@ namespace bsmpm
 
 
 
-  SupportMethod::SupportMethod(const std::string                   &name,
-                               const BoundaryCurve::DirichletMethod method)
+  SupportMethod::SupportMethod(const std::string &name)
     : method_name(name)
-    , method(method)
   {}
 
 
@@ -28,7 +26,7 @@ namespace bsmpm
                             const bool            both_components_only,
                             std::vector<bool>    &cells) const
   {
-    curves.mark_support_cells(grid, method, both_components_only, cells);
+    curves.mark_support_cells(grid, method_name, both_components_only, cells);
   }
 
 
@@ -78,6 +76,49 @@ namespace bsmpm
 
 
 
+  std::optional<Point<2>>
+  SupportMethod::bbar_point(const std::vector<CellMoments> *moments,
+                            const LocallyOwnedCurvePiece   &piece)
+  {
+    if (moments == nullptr)
+      return std::nullopt;
+    return Q1CellKernel::centroid(
+      (*moments)[piece.owned_cell->active_cell_index()]);
+  }
+
+
+
+  void
+  SupportMethod::add_piece_terms(const Context                   &context,
+                                 const Quadrature<1>             &along,
+                                 const BoundaryCurve             *only,
+                                 const AffineConstraints<double> &constraints,
+                                 TrilinosWrappers::SparseMatrix  *matrix,
+                                 TrilinosWrappers::MPI::Vector   &vector,
+                                 const PieceTerms &piece_terms) const
+  {
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    FullMatrix<double>     cell_matrix(n, n);
+    Vector<double>         cell_vector(n);
+    CurvePieceValues       values(context.grid, along);
+    for (const auto &piece : supported_pieces(values, context.curves, only))
+      {
+        values.reinit(piece);
+        cell_matrix = 0;
+        cell_vector = 0;
+        piece_terms(values, cell_matrix, cell_vector);
+        if (matrix != nullptr)
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_vector, values.dof_indices(), *matrix, vector);
+        else
+          constraints.distribute_local_to_global(cell_vector,
+                                                 values.dof_indices(),
+                                                 vector);
+      }
+  }
+
+
+
   bool
   register_support_method(const std::string        &name,
                           const SupportMethodEntry &entry)
@@ -94,5 +135,16 @@ namespace bsmpm
   registered_support_methods()
   {
     return support_method_registry();
+  }
+
+
+
+  std::string
+  support_method_names()
+  {
+    std::string names;
+    for (const auto &[name, entry] : support_method_registry())
+      names += (names.empty() ? "" : "|") + name;
+    return names;
   }
 } // namespace bsmpm

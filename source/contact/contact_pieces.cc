@@ -1,5 +1,6 @@
 #include <deal.II/base/quadrature_lib.h>
 
+#include <bsmpm/boundary/curve_piece_values.h>
 #include <bsmpm/contact/contact_history.h>
 #include <bsmpm/contact/contact_pieces.h>
 
@@ -37,70 +38,65 @@ namespace bsmpm
                           const unsigned int            n_gauss_points)
   {
     const double              h = grid.min_cell_size();
-    const QGauss<1>           gauss(n_gauss_points);
-    const auto               &all_curves = curves.get_curves();
+    CurvePieceValues          values(grid, QGauss<1>(n_gauss_points));
     std::vector<ContactPiece> pieces;
-    for (unsigned int c = 0; c < all_curves.size(); ++c)
+    for (const auto &piece :
+         values.pieces(curves, CurvePieceValues::free_pieces()))
       {
-        const BoundaryCurve &curve  = all_curves[c];
-        const BSplineCurve  &spline = *curve.spline;
-        for (const auto &piece : curve.pieces)
+        const Point<2> middle =
+          piece.curve->spline->value((piece.u_begin + piece.u_end) / 2);
+        // The Gauss points are evaluated only for a piece that some body
+        // can reach: most free pieces are far from every body.
+        bool evaluated = false;
+        for (unsigned int b = 0; b < bodies.size(); ++b)
           {
-            if (curve.condition_of_segment(piece.segment) != nullptr ||
-                grid.locally_owned_cell(piece.cell) == grid.dof_handler().end())
+            if (!contact_piece_within_reach(bodies, motion, b, middle, h))
               continue;
-            const Point<2> middle =
-              spline.value((piece.u_begin + piece.u_end) / 2);
-            for (unsigned int b = 0; b < bodies.size(); ++b)
+            if (!evaluated)
+              values.reinit(piece);
+            evaluated                 = true;
+            const Tensor<1, 2> &start = motion.start(b);
+            const Tensor<1, 2> &end   = motion.end(b);
+            // The part of the outline the piece faces: that nearest to it
+            // before the increment moves anything.
+            const SurfacePoint nearest = bodies[b].nearest(middle, start);
+            // The pieces of a curve in one cell (one per segment there)
+            // that face one part of the rigid outline act as one: one
+            // pressure per cell, curve and part.
+            const bool joins = !pieces.empty() && pieces.back().body == b &&
+                               pieces.back().curve == piece.curve_index &&
+                               pieces.back().cell == piece.cell &&
+                               pieces.back().feature == nearest.feature &&
+                               pieces.back().u_end == piece.u_begin;
+            if (!joins)
+              pieces.push_back(ContactPiece::make(b,
+                                                  piece.curve_index,
+                                                  piece.cell,
+                                                  nearest.feature,
+                                                  piece.u_begin,
+                                                  piece.u_end));
+            ContactPiece &contact_piece = pieces.back();
+            contact_piece.u_end         = piece.u_end;
+            for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
               {
-                if (!contact_piece_within_reach(bodies, motion, b, middle, h))
-                  continue;
-                const Tensor<1, 2> &start = motion.start(b);
-                const Tensor<1, 2> &end   = motion.end(b);
-                // The part of the outline the piece faces: that nearest to
-                // it before the increment moves anything.
-                const SurfacePoint nearest = bodies[b].nearest(middle, start);
-                // The pieces of a curve in one cell (one per segment there)
-                // that face one part of the rigid outline act as one: one
-                // pressure per cell, curve and part.
-                const bool joins = !pieces.empty() && pieces.back().body == b &&
-                                   pieces.back().curve == c &&
-                                   pieces.back().cell == piece.cell &&
-                                   pieces.back().feature == nearest.feature &&
-                                   pieces.back().u_end == piece.u_begin;
-                if (!joins)
-                  pieces.push_back(ContactPiece::make(b,
-                                                      c,
-                                                      piece.cell,
-                                                      nearest.feature,
-                                                      piece.u_begin,
-                                                      piece.u_end));
-                ContactPiece &contact_piece = pieces.back();
-                contact_piece.u_end         = piece.u_end;
-                const double du             = piece.u_end - piece.u_begin;
-                for (unsigned int q = 0; q < gauss.size(); ++q)
-                  {
-                    const double u = piece.u_begin + gauss.point(q)[0] * du;
-                    contact_piece.positions.push_back(spline.value(u));
-                    contact_piece.features.push_back(
-                      bodies[b]
-                        .nearest(contact_piece.positions.back(), start)
-                        .feature);
-                    // The first guess of the part that touches: where the
-                    // rigid body, moved to the increment's end, overlaps
-                    // the curve that has not moved yet.
-                    contact_piece.touching.push_back(
-                      bodies[b]
-                        .to_feature(contact_piece.positions.back(),
-                                    end,
-                                    contact_piece.features.back())
-                        .gap <= 1e-12 * h);
-                    contact_piece.weights.push_back(
-                      spline.derivative(u).norm() * du * gauss.weight(q));
-                    contact_piece.previous.push_back(
-                      history.at(c, curve, piece.segment, u));
-                    contact_piece.length += contact_piece.weights.back();
-                  }
+                const Point<2> &x = values.position(q);
+                contact_piece.positions.push_back(x);
+                contact_piece.features.push_back(
+                  bodies[b].nearest(x, start).feature);
+                // The first guess of the part that touches: where the
+                // rigid body, moved to the increment's end, overlaps the
+                // curve that has not moved yet.
+                contact_piece.touching.push_back(
+                  bodies[b]
+                    .to_feature(x, end, contact_piece.features.back())
+                    .gap <= 1e-12 * h);
+                contact_piece.weights.push_back(values.JxW(q));
+                contact_piece.previous.push_back(
+                  history.at(piece.curve_index,
+                             *piece.curve,
+                             piece.segment,
+                             values.parameter(q)));
+                contact_piece.length += contact_piece.weights.back();
               }
           }
       }

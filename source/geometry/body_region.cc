@@ -101,6 +101,54 @@ namespace bsmpm
       text << x;
       return text.str();
     }
+
+
+
+    /** Refuses an angle of @p degrees in the entry @p entry that is more
+     * than a full turn; @p advice: what to give instead. */
+    void
+    require_at_most_a_turn(const double       degrees,
+                           const std::string &entry,
+                           const std::string &advice)
+    {
+      AssertThrow(std::abs(degrees) <= 360,
+                  ExcMessage(entry + ": " + number(degrees) +
+                             " degrees is more than a full turn; " + advice));
+    }
+
+
+
+    /** The vertices of "Body region/Vertices", 'x0, y0; x1, y1; ...'. */
+    std::vector<Point<2>>
+    parse_polygon_vertices(const std::string &vertex_text)
+    {
+      std::vector<Point<2>> vertices;
+      for (const auto &text : Utilities::split_string_list(vertex_text, ';'))
+        {
+          const auto xy = Utilities::split_string_list(text, ',');
+          AssertThrow(xy.size() == 2,
+                      ExcMessage("Body region/Vertices: '" + text +
+                                 "' is not a point 'x, y'; give the "
+                                 "vertices as 'x0, y0; x1, y1; ...'."));
+          double x = 0, y = 0;
+          try
+            {
+              x = Utilities::string_to_double(xy[0]);
+              y = Utilities::string_to_double(xy[1]);
+            }
+          catch (...)
+            {
+              AssertThrow(false,
+                          ExcMessage("Body region/Vertices: '" + text +
+                                     "' is not a point of two "
+                                     "numbers."));
+            }
+          ParameterTools::require_finite(x, "Body region/Vertices");
+          ParameterTools::require_finite(y, "Body region/Vertices");
+          vertices.emplace_back(x, y);
+        }
+      return vertices;
+    }
   } // namespace
 
 
@@ -108,9 +156,6 @@ namespace bsmpm
   void
   BodyRegion::parse_parameters(ParameterHandler &prm)
   {
-    // One function for the five shapes (about 160 lines): each reads its
-    // own entries and refuses what makes no region, with a message that
-    // names the entry; apart, they would repeat the subsection's handling.
     prm.enter_subsection("Body region");
     const std::string shape    = prm.get("Shape");
     region_shape               = shape == "rectangle" ?
@@ -141,135 +186,135 @@ namespace bsmpm
     const std::string vertex_text = prm.get("Vertices");
     prm.leave_subsection();
 
+    // Each shape refuses what makes no region, with a message that names
+    // the entry.
     switch (region_shape)
       {
         case Shape::rectangle:
         case Shape::rectangle_minus_disc:
-          AssertThrow(upper_right[0] > lower_left[0] &&
-                        upper_right[1] > lower_left[1],
-                      ExcMessage("Body region: the upper right corner must lie "
-                                 "above and to the right of the lower left "
-                                 "corner."));
-          if (region_shape == Shape::rectangle_minus_disc)
-            AssertThrow(disc_radius > 0,
-                        ExcMessage("Body region: the Disc radius of a "
-                                   "rectangle minus disc must be positive "
-                                   "(a rectangle without a hole is the shape "
-                                   "'rectangle')."));
-          if (region_shape == Shape::rectangle_minus_disc)
-            for (unsigned int d = 0; d < 2; ++d)
-              AssertThrow((disc_center[d] == lower_left[d] ||
-                           disc_center[d] - disc_radius >= lower_left[d]) &&
-                            (disc_center[d] == upper_right[d] ||
-                             disc_center[d] + disc_radius <= upper_right[d]),
-                          ExcMessage("Body region: the disc must lie inside "
-                                     "the rectangle or be centred on its "
-                                     "edges (as a quarter or half hole)."));
+          check_rectangle();
           break;
         case Shape::rotated_rectangle:
-          AssertThrow(width > 0 && height > 0,
-                      ExcMessage("Body region: width and height of a rotated "
-                                 "rectangle must be positive."));
-          ParameterTools::require_finite(angle_degrees, "Body region/Angle");
-          AssertThrow(std::abs(angle_degrees) <= 360,
-                      ExcMessage("Body region/Angle: " + number(angle_degrees) +
-                                 " degrees is more than a full turn; give the "
-                                 "counter-clockwise rotation in degrees in "
-                                 "[-360, 360] (negative: clockwise)."));
+          check_rotated_rectangle(angle_degrees);
           break;
         case Shape::annulus_sector:
-          ParameterTools::require_finite(start_degrees,
-                                         "Body region/Start angle");
-          ParameterTools::require_finite(end_degrees, "Body region/End angle");
-          AssertThrow(std::abs(start_degrees) <= 360,
-                      ExcMessage(
-                        "Body region/Start angle: " + number(start_degrees) +
-                        " degrees is more than a full turn; give it "
-                        "in [-360, 360] degrees, and the End angle "
-                        "in (Start angle, Start angle + 360]."));
-          AssertThrow(annulus.outer_radius > annulus.inner_radius &&
-                        end_degrees > start_degrees &&
-                        end_degrees - start_degrees <= 360,
-                      ExcMessage("Body region: an annulus sector needs "
-                                 "inner radius < outer radius and start angle "
-                                 "< end angle <= start angle + 360 (degrees, "
-                                 "counter-clockwise), got radii " +
-                                 number(annulus.inner_radius) + ", " +
-                                 number(annulus.outer_radius) + " and angles " +
-                                 number(start_degrees) + ", " +
-                                 number(end_degrees) + "."));
+          check_annulus_sector(start_degrees, end_degrees);
           break;
         case Shape::polygon:
-          {
-            vertices.clear();
-            for (const auto &text :
-                 Utilities::split_string_list(vertex_text, ';'))
-              {
-                const auto xy = Utilities::split_string_list(text, ',');
-                AssertThrow(xy.size() == 2,
-                            ExcMessage("Body region/Vertices: '" + text +
-                                       "' is not a point 'x, y'; give the "
-                                       "vertices as 'x0, y0; x1, y1; ...'."));
-                double x = 0, y = 0;
-                try
-                  {
-                    x = Utilities::string_to_double(xy[0]);
-                    y = Utilities::string_to_double(xy[1]);
-                  }
-                catch (...)
-                  {
-                    AssertThrow(false,
-                                ExcMessage("Body region/Vertices: '" + text +
-                                           "' is not a point of two "
-                                           "numbers."));
-                  }
-                ParameterTools::require_finite(x, "Body region/Vertices");
-                ParameterTools::require_finite(y, "Body region/Vertices");
-                vertices.emplace_back(x, y);
-              }
-            AssertThrow(vertices.size() >= 3,
-                        ExcMessage("Body region/Vertices: a polygon needs at "
-                                   "least 3 vertices, got " +
-                                   std::to_string(vertices.size()) + "."));
-            const unsigned int n = vertices.size();
-            for (unsigned int i = 0; i < n; ++i)
-              AssertThrow(vertices[i].distance(vertices[(i + 1) % n]) > 0,
-                          ExcMessage("Body region/Vertices: vertices " +
-                                     std::to_string(i) + " and " +
-                                     std::to_string((i + 1) % n) +
-                                     " coincide."));
-            // Two edges that are not neighbours must not meet (a simple
-            // polygon), or contains() and area() disagree.
-            const auto cross = [](const Tensor<1, 2> &a,
-                                  const Tensor<1, 2> &b) {
-              return a[0] * b[1] - a[1] * b[0];
-            };
-            for (unsigned int i = 0; i < n; ++i)
-              for (unsigned int j = i + 2; j < n; ++j)
-                {
-                  if (i == 0 && j == n - 1)
-                    continue;
-                  const Point<2> a = vertices[i], b = vertices[(i + 1) % n],
-                                 c = vertices[j], d = vertices[(j + 1) % n];
-                  const double d1 = cross(b - a, c - a),
-                               d2 = cross(b - a, d - a),
-                               d3 = cross(d - c, a - c),
-                               d4 = cross(d - c, b - c);
-                  AssertThrow(!(d1 * d2 <= 0 && d3 * d4 <= 0),
-                              ExcMessage("Body region/Vertices: edge " +
-                                         std::to_string(i) + " and edge " +
-                                         std::to_string(j) +
-                                         " of the polygon cross or touch; "
-                                         "the boundary must not cross "
-                                         "itself."));
-                }
-            AssertThrow(area() > 0,
-                        ExcMessage("Body region/Vertices: the vertices run "
-                                   "clockwise; give them counter-clockwise "
-                                   "(the body to the left of every edge)."));
-            break;
-          }
+          vertices = parse_polygon_vertices(vertex_text);
+          check_polygon();
+          break;
       }
+  }
+
+
+
+  void
+  BodyRegion::check_rectangle() const
+  {
+    AssertThrow(upper_right[0] > lower_left[0] &&
+                  upper_right[1] > lower_left[1],
+                ExcMessage("Body region: the upper right corner must lie "
+                           "above and to the right of the lower left "
+                           "corner."));
+    if (region_shape == Shape::rectangle_minus_disc)
+      AssertThrow(disc_radius > 0,
+                  ExcMessage("Body region: the Disc radius of a "
+                             "rectangle minus disc must be positive "
+                             "(a rectangle without a hole is the shape "
+                             "'rectangle')."));
+    if (region_shape == Shape::rectangle_minus_disc)
+      for (unsigned int d = 0; d < 2; ++d)
+        AssertThrow((disc_center[d] == lower_left[d] ||
+                     disc_center[d] - disc_radius >= lower_left[d]) &&
+                      (disc_center[d] == upper_right[d] ||
+                       disc_center[d] + disc_radius <= upper_right[d]),
+                    ExcMessage("Body region: the disc must lie inside "
+                               "the rectangle or be centred on its "
+                               "edges (as a quarter or half hole)."));
+  }
+
+
+
+  void
+  BodyRegion::check_rotated_rectangle(const double angle_degrees) const
+  {
+    AssertThrow(width > 0 && height > 0,
+                ExcMessage("Body region: width and height of a rotated "
+                           "rectangle must be positive."));
+    ParameterTools::require_finite(angle_degrees, "Body region/Angle");
+    require_at_most_a_turn(angle_degrees,
+                           "Body region/Angle",
+                           "give the counter-clockwise rotation in degrees in "
+                           "[-360, 360] (negative: clockwise).");
+  }
+
+
+
+  void
+  BodyRegion::check_annulus_sector(const double start_degrees,
+                                   const double end_degrees) const
+  {
+    ParameterTools::require_finite(start_degrees, "Body region/Start angle");
+    ParameterTools::require_finite(end_degrees, "Body region/End angle");
+    require_at_most_a_turn(start_degrees,
+                           "Body region/Start angle",
+                           "give it in [-360, 360] degrees, and the End angle "
+                           "in (Start angle, Start angle + 360].");
+    AssertThrow(annulus.outer_radius > annulus.inner_radius &&
+                  end_degrees > start_degrees &&
+                  end_degrees - start_degrees <= 360,
+                ExcMessage("Body region: an annulus sector needs "
+                           "inner radius < outer radius and start angle "
+                           "< end angle <= start angle + 360 (degrees, "
+                           "counter-clockwise), got radii " +
+                           number(annulus.inner_radius) + ", " +
+                           number(annulus.outer_radius) + " and angles " +
+                           number(start_degrees) + ", " + number(end_degrees) +
+                           "."));
+  }
+
+
+
+  void
+  BodyRegion::check_polygon() const
+  {
+    AssertThrow(vertices.size() >= 3,
+                ExcMessage("Body region/Vertices: a polygon needs at "
+                           "least 3 vertices, got " +
+                           std::to_string(vertices.size()) + "."));
+    const unsigned int n = vertices.size();
+    for (unsigned int i = 0; i < n; ++i)
+      AssertThrow(vertices[i].distance(vertices[(i + 1) % n]) > 0,
+                  ExcMessage("Body region/Vertices: vertices " +
+                             std::to_string(i) + " and " +
+                             std::to_string((i + 1) % n) + " coincide."));
+    // Two edges that are not neighbours must not meet (a simple
+    // polygon), or contains() and area() disagree.
+    const auto cross = [](const Tensor<1, 2> &a, const Tensor<1, 2> &b) {
+      return a[0] * b[1] - a[1] * b[0];
+    };
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = i + 2; j < n; ++j)
+        {
+          if (i == 0 && j == n - 1)
+            continue;
+          const Point<2> a = vertices[i], b = vertices[(i + 1) % n],
+                         c = vertices[j], d = vertices[(j + 1) % n];
+          const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a),
+                       d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+          AssertThrow(!(d1 * d2 <= 0 && d3 * d4 <= 0),
+                      ExcMessage("Body region/Vertices: edge " +
+                                 std::to_string(i) + " and edge " +
+                                 std::to_string(j) +
+                                 " of the polygon cross or touch; "
+                                 "the boundary must not cross "
+                                 "itself."));
+        }
+    AssertThrow(area() > 0,
+                ExcMessage("Body region/Vertices: the vertices run "
+                           "clockwise; give them counter-clockwise "
+                           "(the body to the left of every edge)."));
   }
 
 

@@ -152,9 +152,7 @@ namespace bsmpm
                               const BoundaryCurves &curves,
                               const bool            rigid_bodies)
   {
-    const bool curve_supports =
-      curves.has_supports(BoundaryCurve::DirichletMethod::implicit_boundary) ||
-      curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
+    const bool curve_supports = curves.has_supports();
     AssertThrow(grid.has_face_conditions() || curve_supports || rigid_bodies,
                 ExcMessage("The body has no support at all: no grid face "
                            "condition, no fixed, roller or displacement "

@@ -231,8 +231,35 @@ namespace bsmpm
     void
     galerkin_product(const unsigned int l);
 
+    /** The smoother of every level but the coarsest, and the coarsest
+     * level's solver. */
     void
     setup_smoothers_and_coarse_solver();
+
+    /** Level l's preconditioner of the Chebyshev smoother: Jacobi, or the
+     * vertex (cell, large) patches. */
+    std::shared_ptr<LevelPreconditioner>
+    make_level_preconditioner(const unsigned int l) const;
+
+    /** An estimate of the largest eigenvalue of level l's operator
+     * preconditioned by @p preconditioner. */
+    double
+    largest_eigenvalue(const unsigned int         l,
+                       const LevelPreconditioner &preconditioner) const;
+
+    /** Level l's Chebyshev smoother. */
+    void
+    setup_smoother(const unsigned int l);
+
+    /** coarsest: the coarsest operator with a unit diagonal where it has
+     * empty rows. */
+    void
+    make_coarsest_invertible();
+
+    /** The coarsest level's solver: KLU (regularised where singular) or
+     * AMG. */
+    void
+    setup_coarse_solver();
 
     void
     cycle(const unsigned int l, VectorType &x, const VectorType &b) const;
@@ -423,82 +450,115 @@ namespace bsmpm
   void
   GeometricMultigrid::Implementation::setup_smoothers_and_coarse_solver()
   {
-    // About 170 lines in two parts: the smoother of each level (Jacobi or
-    // the vertex patches, scaled by the largest eigenvalue of its
-    // preconditioned operator), then the coarsest level's operator, made
-    // invertible, and its solver (KLU up to a size, else AMG with the two
-    // translations as its constant modes).
     for (unsigned int l = 0; l + 1 < levels.size(); ++l)
+      setup_smoother(l);
+    // The old coarse solver first: it refers to the old coarse operators.
+    coarse_direct.reset();
+    coarse_amg.reset();
+    regularised.reset();
+    make_coarsest_invertible();
+    setup_coarse_solver();
+  }
+
+
+
+  std::shared_ptr<LevelPreconditioner>
+  GeometricMultigrid::Implementation::make_level_preconditioner(
+    const unsigned int l) const
+  {
+    const Level            &level = *levels[l];
+    const Epetra_CrsMatrix &A     = *level.op.matrix;
+    // Jacobi: the inverse diagonal, zero where the diagonal is (the
+    // empty rows of a coarse operator, which the coarse correction
+    // never touches: their restricted residual is zero).
+    auto        preconditioner   = std::make_shared<LevelPreconditioner>();
+    VectorType &inverse_diagonal = preconditioner->jacobi.values;
+    inverse_diagonal.reinit(level.owned, communicator);
+    Epetra_Vector &d = *inverse_diagonal.trilinos_vector()(0);
+    check(A.ExtractDiagonalCopy(d));
+    for (int k = 0; k < d.MyLength(); ++k)
+      d[k] = d[k] != 0. ? 1. / d[k] : 0.;
+    if (data.blocks != GeometricMultigrid::Blocks::point &&
+        (data.patch_levels == 0 || l < data.patch_levels))
       {
-        Level                  &level = *levels[l];
-        const Epetra_CrsMatrix &A     = *level.op.matrix;
-
-        // Jacobi: the inverse diagonal, zero where the diagonal is (the
-        // empty rows of a coarse operator, which the coarse correction
-        // never touches: their restricted residual is zero).
-        auto        preconditioner   = std::make_shared<LevelPreconditioner>();
-        VectorType &inverse_diagonal = preconditioner->jacobi.values;
-        inverse_diagonal.reinit(level.owned, communicator);
-        Epetra_Vector &d = *inverse_diagonal.trilinos_vector()(0);
-        check(A.ExtractDiagonalCopy(d));
-        for (int k = 0; k < d.MyLength(); ++k)
-          d[k] = d[k] != 0. ? 1. / d[k] : 0.;
-        if (data.blocks != GeometricMultigrid::Blocks::point &&
-            (data.patch_levels == 0 || l < data.patch_levels))
-          {
-            preconditioner->patches = std::make_unique<VertexPatchSmoother>();
-            preconditioner->patches->initialize(
-              A,
-              *level.map,
-              level.place,
-              level.nx,
-              level.ny,
-              data.blocks == GeometricMultigrid::Blocks::vertex_patch ?
-                VertexPatchSmoother::Patch::vertex :
-                (data.blocks == GeometricMultigrid::Blocks::cell_patch ?
-                   VertexPatchSmoother::Patch::cell :
-                   VertexPatchSmoother::Patch::large));
-          }
-
-        // The largest eigenvalue of D^-1 A (or B A with the patches' B)
-        // from the Lanczos process of a few CG steps, started from a
-        // vector with high-frequency content that depends on the global
-        // index only (the same at any number of processes on the coarse
-        // levels).
-        VectorType     start(level.owned, communicator), x(start);
-        Epetra_Vector &s = *start.trilinos_vector()(0);
-        for (int k = 0; k < s.MyLength(); ++k)
-          s[k] = d[k] != 0. ? double(s.Map().GID(k) % 11) - 5. : 0.;
-        double lambda_max = 1.;
-        {
-          IterationNumberControl control(12, 1e-14, false, false);
-          SolverCG<VectorType>   cg(control);
-          cg.connect_eigenvalues_slot(
-            [&lambda_max](const std::vector<double> &eigenvalues) {
-              if (!eigenvalues.empty())
-                lambda_max = eigenvalues.back();
-            });
-          cg.solve(level.op, x, start, *preconditioner);
-        }
-
-        typename Smoother::AdditionalData smoother_data;
-        smoother_data.degree          = data.smoother_degree;
-        smoother_data.smoothing_range = data.smoothing_range;
-        // Lanczos approaches the largest eigenvalue from below.
-        smoother_data.max_eigenvalue      = 1.2 * lambda_max;
-        smoother_data.eig_cg_n_iterations = 0;
-        smoother_data.preconditioner      = preconditioner;
-        level.smoother.initialize(level.op, smoother_data);
+        preconditioner->patches = std::make_unique<VertexPatchSmoother>();
+        preconditioner->patches->initialize(
+          A,
+          *level.map,
+          level.place,
+          level.nx,
+          level.ny,
+          data.blocks == GeometricMultigrid::Blocks::vertex_patch ?
+            VertexPatchSmoother::Patch::vertex :
+            (data.blocks == GeometricMultigrid::Blocks::cell_patch ?
+               VertexPatchSmoother::Patch::cell :
+               VertexPatchSmoother::Patch::large));
       }
+    return preconditioner;
+  }
 
+
+
+  double
+  GeometricMultigrid::Implementation::largest_eigenvalue(
+    const unsigned int         l,
+    const LevelPreconditioner &preconditioner) const
+  {
+    const Level         &level = *levels[l];
+    const Epetra_Vector &d = *preconditioner.jacobi.values.trilinos_vector()(0);
+    // The largest eigenvalue of D^-1 A (or B A with the patches' B)
+    // from the Lanczos process of a few CG steps, started from a
+    // vector with high-frequency content that depends on the global
+    // index only (the same at any number of processes on the coarse
+    // levels).
+    VectorType     start(level.owned, communicator), x(start);
+    Epetra_Vector &s = *start.trilinos_vector()(0);
+    for (int k = 0; k < s.MyLength(); ++k)
+      s[k] = d[k] != 0. ? double(s.Map().GID(k) % 11) - 5. : 0.;
+    double lambda_max = 1.;
+    {
+      IterationNumberControl control(12, 1e-14, false, false);
+      SolverCG<VectorType>   cg(control);
+      cg.connect_eigenvalues_slot(
+        [&lambda_max](const std::vector<double> &eigenvalues) {
+          if (!eigenvalues.empty())
+            lambda_max = eigenvalues.back();
+        });
+      cg.solve(level.op, x, start, preconditioner);
+    }
+    return lambda_max;
+  }
+
+
+
+  void
+  GeometricMultigrid::Implementation::setup_smoother(const unsigned int l)
+  {
+    // Chebyshev smoothing with Jacobi or the vertex patches, scaled by the
+    // largest eigenvalue of its preconditioned operator.
+    Level       &level          = *levels[l];
+    const auto   preconditioner = make_level_preconditioner(l);
+    const double lambda_max     = largest_eigenvalue(l, *preconditioner);
+    typename Smoother::AdditionalData smoother_data;
+    smoother_data.degree          = data.smoother_degree;
+    smoother_data.smoothing_range = data.smoothing_range;
+    // Lanczos approaches the largest eigenvalue from below.
+    smoother_data.max_eigenvalue      = 1.2 * lambda_max;
+    smoother_data.eig_cg_n_iterations = 0;
+    smoother_data.preconditioner      = preconditioner;
+    level.smoother.initialize(level.op, smoother_data);
+  }
+
+
+
+  void
+  GeometricMultigrid::Implementation::make_coarsest_invertible()
+  {
     // The coarsest level: P^T A P has empty rows and columns for the coarse
     // unknowns that no coupled fine unknown interpolates from; a unit
     // diagonal there makes it invertible without changing the solution
     // elsewhere (their right-hand side is zero). The finest level, when it
     // is the only one, has its diagonal.
-    coarse_direct.reset();
-    coarse_amg.reset();
-    regularised.reset();
     const Level            &last = *levels.back();
     const Epetra_CrsMatrix &C    = *last.op.matrix;
     coarsest.reset();
@@ -540,6 +600,17 @@ namespace bsmpm
           }
         check(coarsest->FillComplete(*last.map, *last.map));
       }
+  }
+
+
+
+  void
+  GeometricMultigrid::Implementation::setup_coarse_solver()
+  {
+    // KLU up to a size, else AMG with the two translations as its constant
+    // modes.
+    const Level            &last          = *levels.back();
+    const Epetra_CrsMatrix &C             = *last.op.matrix;
     const Epetra_CrsMatrix &coarse_matrix = coarsest ? *coarsest : C;
 
     if (static_cast<types::global_dof_index>(coarse_matrix.NumGlobalRows64()) <=

@@ -224,10 +224,7 @@ namespace bsmpm
            parts.assembly.contact_tangent_symmetric() &&
            !(update.kinematics() ==
                ConstitutiveUpdate::Kinematics::finite_strain &&
-             (curves.has_loads() ||
-              curves.has_supports(
-                BoundaryCurve::DirichletMethod::implicit_boundary) ||
-              curves.has_supports(BoundaryCurve::DirichletMethod::nitsche)));
+             (curves.has_loads() || curves.has_supports()));
   }
 
 

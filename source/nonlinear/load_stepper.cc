@@ -400,10 +400,7 @@ namespace bsmpm
     // A body that nothing but contact holds (InputChecks::check_supports())
     // must rest on the rigid bodies under its own loads.
     const bool supported =
-      parts.grid.has_face_conditions() ||
-      parts.curves.has_supports(
-        BoundaryCurve::DirichletMethod::implicit_boundary) ||
-      parts.curves.has_supports(BoundaryCurve::DirichletMethod::nitsche);
+      parts.grid.has_face_conditions() || parts.curves.has_supports();
     const Tensor<1, 2> load = load_factor * parts.material.density() *
                                 parts.points.global_volume() * parts.gravity +
                               traction_resultant();

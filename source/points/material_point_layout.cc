@@ -1,10 +1,68 @@
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/points/material_point_layout.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 namespace bsmpm
 {
+  namespace
+  {
+    /** Whether a point at @p p of a layout not tied to the cells is
+     * wanted: outside the grid (for the caller to reject) or in a wanted
+     * cell. */
+    bool
+    in_wanted_cell(
+      const BackgroundGrid &grid,
+      const std::function<bool(const MaterialPointLayout::CellIndex &)>
+                     &wanted_cell,
+      const Point<2> &p)
+    {
+      return !grid.contains(p) || wanted_cell(grid.cell_index(p));
+    }
+
+
+
+    /** The cell with lower left corner @p o and size @p h clipped by each
+     * side of the convex quadrilateral @p corners (counter-clockwise), by
+     * Sutherland-Hodgman: the cell's part of a (rotated) rectangle. */
+    std::vector<Point<2>>
+    clip_cell_to_body(const Point<2>                &o,
+                      const Tensor<1, 2>            &h,
+                      const std::array<Point<2>, 4> &corners)
+    {
+      std::vector<Point<2>> polygon = {o,
+                                       o + Tensor<1, 2>({h[0], 0}),
+                                       o + h,
+                                       o + Tensor<1, 2>({0, h[1]})};
+      for (unsigned int k = 0; k < 4 && !polygon.empty(); ++k)
+        {
+          const Point<2> a = corners[k], b = corners[(k + 1) % 4];
+          const auto     side = [&](const Point<2> &p) {
+            return cross_product_2d(b - a) * (p - a);
+          };
+          std::vector<Point<2>> clipped;
+          for (unsigned int m = 0; m < polygon.size(); ++m)
+            {
+              const Point<2> &p = polygon[m];
+              const Point<2> &q = polygon[(m + 1) % polygon.size()];
+              // Inside: to the left of a -> b, i.e. side <= 0 for
+              // the clockwise-turned edge normal.
+              const double sp = -side(p), sq = -side(q);
+              if (sp >= 0)
+                clipped.push_back(p);
+              if ((sp >= 0) != (sq >= 0))
+                clipped.push_back(p + sp / (sp - sq) * (q - p));
+            }
+          polygon = clipped;
+        }
+      return polygon;
+    }
+  } // namespace
+
+
+
   void
   MaterialPointLayout::declare_parameters(ParameterHandler &prm)
   {
@@ -79,162 +137,164 @@ namespace bsmpm
     const std::function<bool(const CellIndex &)> &wanted_cell,
     const std::function<void(const Point<2> &, double, unsigned long)> &f) const
   {
-    // One switch over the layouts (about 150 lines): each case is a loop
-    // that generates its points and their volumes, and reads best beside
-    // the others, whose volumes it must match. For layouts not tied to
-    // cells: skip points in unwanted cells.
-    const auto wanted_point = [&](const Point<2> &p) {
-      return !grid.contains(p) || wanted_cell(grid.cell_index(p));
-    };
+    // One function per layout: each generates its points and their
+    // volumes, which must sum to the body's area.
     switch (layout)
       {
         case Kind::per_cell:
-          {
-            const unsigned int  n      = points_per_cell;
-            const Tensor<1, 2> &h      = grid.cell_size();
-            const double        volume = h[0] * h[1] / (n * n);
-            for (unsigned int j = 0; j < grid.n_cells(1); ++j)
-              for (unsigned int i = 0; i < grid.n_cells(0); ++i)
-                {
-                  if (!wanted_cell({{i, j}}))
-                    continue;
-                  const Point<2>      origin = grid.cell_origin({{i, j}});
-                  const unsigned long first =
-                    (static_cast<unsigned long>(j) * grid.n_cells(0) + i) * n *
-                    n;
-                  for (unsigned int b = 0; b < n; ++b)
-                    for (unsigned int a = 0; a < n; ++a)
-                      {
-                        const Point<2> p(origin[0] + (a + 0.5) * h[0] / n,
-                                         origin[1] + (b + 0.5) * h[1] / n);
-                        if (region.contains(p))
-                          f(p, volume, first + b * n + a);
-                      }
-                }
-            break;
-          }
-
+          for_each_point_per_cell(grid, region, wanted_cell, f);
+          break;
         case Kind::lattice:
-          {
-            const BoundingBox<2> box      = region.bounding_box();
-            const auto           to_point = [](const std::string &text,
-                                     const Point<2>    &fallback) {
-              if (text.empty())
-                return fallback;
-              const auto v = Utilities::string_to_double(
-                Utilities::split_string_list(text, ','));
-              return Point<2>(v[0], v[1]);
-            };
-            const Point<2> lower =
-              to_point(lattice_lower_left, box.get_boundary_points().first);
-            const Point<2> upper =
-              to_point(lattice_upper_right, box.get_boundary_points().second);
-            const double dx = (upper[0] - lower[0]) / lattice_points[0];
-            const double dy = (upper[1] - lower[1]) / lattice_points[1];
-            AssertThrow(dx > 0 && dy > 0,
-                        ExcMessage("Material points: the lattice rectangle "
-                                   "is empty."));
-            for (unsigned int j = 0; j < lattice_points[1]; ++j)
-              for (unsigned int i = 0; i < lattice_points[0]; ++i)
-                {
-                  const Point<2> p(lower[0] + (i + 0.5) * dx,
-                                   lower[1] + (j + 0.5) * dy);
-                  if (region.contains(p) && wanted_point(p))
-                    f(p,
-                      dx * dy,
-                      static_cast<unsigned long>(j) * lattice_points[0] + i);
-                }
-            break;
-          }
-
+          for_each_lattice_point(grid, region, wanted_cell, f);
+          break;
         case Kind::cell_centroid:
-          {
-            AssertThrow(region.shape() == BodyRegion::Shape::rectangle ||
-                          region.shape() ==
-                            BodyRegion::Shape::rotated_rectangle,
-                        ExcMessage("Material points: the cell centroid "
-                                   "layout needs a (rotated) rectangular "
-                                   "body region."));
-            const auto corners = region.corners();
-            for (unsigned int j = 0; j < grid.n_cells(1); ++j)
-              for (unsigned int i = 0; i < grid.n_cells(0); ++i)
-                {
-                  if (!wanted_cell({{i, j}}))
-                    continue;
-                  // Clip the cell by each side of the convex body
-                  // (Sutherland-Hodgman), then take area and centroid.
-                  const Point<2>        o       = grid.cell_origin({{i, j}});
-                  const Tensor<1, 2>   &h       = grid.cell_size();
-                  std::vector<Point<2>> polygon = {o,
-                                                   o + Tensor<1, 2>({h[0], 0}),
-                                                   o + h,
-                                                   o + Tensor<1, 2>({0, h[1]})};
-                  for (unsigned int k = 0; k < 4 && !polygon.empty(); ++k)
-                    {
-                      const Point<2> a = corners[k], b = corners[(k + 1) % 4];
-                      const auto     side = [&](const Point<2> &p) {
-                        return cross_product_2d(b - a) * (p - a);
-                      };
-                      std::vector<Point<2>> clipped;
-                      for (unsigned int m = 0; m < polygon.size(); ++m)
-                        {
-                          const Point<2> &p = polygon[m];
-                          const Point<2> &q = polygon[(m + 1) % polygon.size()];
-                          // Inside: to the left of a -> b, i.e. side <= 0 for
-                          // the clockwise-turned edge normal.
-                          const double sp = -side(p), sq = -side(q);
-                          if (sp >= 0)
-                            clipped.push_back(p);
-                          if ((sp >= 0) != (sq >= 0))
-                            clipped.push_back(p + sp / (sp - sq) * (q - p));
-                        }
-                      polygon = clipped;
-                    }
-                  double   area = 0;
-                  Point<2> centroid;
-                  for (unsigned int m = 0; m < polygon.size(); ++m)
-                    {
-                      const Point<2> &p = polygon[m];
-                      const Point<2> &q = polygon[(m + 1) % polygon.size()];
-                      const double    a = p[0] * q[1] - q[0] * p[1];
-                      area += a / 2;
-                      centroid += a / 6 * (p + q);
-                    }
-                  if (area > 1e-12 * h[0] * h[1])
-                    f(centroid / area,
-                      area,
-                      static_cast<unsigned long>(j) * grid.n_cells(0) + i);
-                }
-            break;
-          }
-
+          for_each_cell_centroid(grid, region, wanted_cell, f);
+          break;
         case Kind::polar:
-          {
-            AssertThrow(region.shape() == BodyRegion::Shape::annulus_sector,
-                        ExcMessage("Material points: the polar layout needs "
-                                   "an annulus sector body region."));
-            const auto  &s = region.sector();
-            const double dr =
-              (s.outer_radius - s.inner_radius) / polar_points[0];
-            const double dtheta =
-              (s.end_angle - s.start_angle) / polar_points[1];
-            for (unsigned int j = 0; j < polar_points[1]; ++j)
-              for (unsigned int i = 0; i < polar_points[0]; ++i)
-                {
-                  const double   r0 = s.inner_radius + i * dr, r1 = r0 + dr;
-                  const double   r     = (r0 + r1) / 2;
-                  const double   theta = s.start_angle + (j + 0.5) * dtheta;
-                  const Point<2> p(s.center[0] + r * std::cos(theta),
-                                   s.center[1] + r * std::sin(theta));
-                  if (wanted_point(p))
-                    f(p,
-                      (r1 * r1 - r0 * r0) / 2 * dtheta,
-                      static_cast<unsigned long>(j) * polar_points[0] + i);
-                }
-            break;
-          }
+          for_each_polar_point(grid, region, wanted_cell, f);
+          break;
       }
   }
+
+
+
+  void
+  MaterialPointLayout::for_each_point_per_cell(const BackgroundGrid &grid,
+                                               const BodyRegion     &region,
+                                               const WantedCell   &wanted_cell,
+                                               const PointVisitor &f) const
+  {
+    const unsigned int  n      = points_per_cell;
+    const Tensor<1, 2> &h      = grid.cell_size();
+    const double        volume = h[0] * h[1] / (n * n);
+    for (unsigned int j = 0; j < grid.n_cells(1); ++j)
+      for (unsigned int i = 0; i < grid.n_cells(0); ++i)
+        {
+          if (!wanted_cell({{i, j}}))
+            continue;
+          const Point<2>      origin = grid.cell_origin({{i, j}});
+          const unsigned long first =
+            (static_cast<unsigned long>(j) * grid.n_cells(0) + i) * n * n;
+          for (unsigned int b = 0; b < n; ++b)
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                const Point<2> p(origin[0] + (a + 0.5) * h[0] / n,
+                                 origin[1] + (b + 0.5) * h[1] / n);
+                if (region.contains(p))
+                  f(p, volume, first + b * n + a);
+              }
+        }
+  }
+
+
+
+  void
+  MaterialPointLayout::for_each_lattice_point(const BackgroundGrid &grid,
+                                              const BodyRegion     &region,
+                                              const WantedCell     &wanted_cell,
+                                              const PointVisitor   &f) const
+  {
+    const BoundingBox<2> box      = region.bounding_box();
+    const auto           to_point = [](const std::string &text,
+                             const Point<2>    &fallback) {
+      if (text.empty())
+        return fallback;
+      const auto v =
+        Utilities::string_to_double(Utilities::split_string_list(text, ','));
+      return Point<2>(v[0], v[1]);
+    };
+    const Point<2> lower =
+      to_point(lattice_lower_left, box.get_boundary_points().first);
+    const Point<2> upper =
+      to_point(lattice_upper_right, box.get_boundary_points().second);
+    const double dx = (upper[0] - lower[0]) / lattice_points[0];
+    const double dy = (upper[1] - lower[1]) / lattice_points[1];
+    AssertThrow(dx > 0 && dy > 0,
+                ExcMessage("Material points: the lattice rectangle "
+                           "is empty."));
+    for (unsigned int j = 0; j < lattice_points[1]; ++j)
+      for (unsigned int i = 0; i < lattice_points[0]; ++i)
+        {
+          const Point<2> p(lower[0] + (i + 0.5) * dx,
+                           lower[1] + (j + 0.5) * dy);
+          if (region.contains(p) && in_wanted_cell(grid, wanted_cell, p))
+            f(p,
+              dx * dy,
+              static_cast<unsigned long>(j) * lattice_points[0] + i);
+        }
+  }
+
+
+
+  void
+  MaterialPointLayout::for_each_cell_centroid(const BackgroundGrid &grid,
+                                              const BodyRegion     &region,
+                                              const WantedCell     &wanted_cell,
+                                              const PointVisitor   &f) const
+  {
+    AssertThrow(region.shape() == BodyRegion::Shape::rectangle ||
+                  region.shape() == BodyRegion::Shape::rotated_rectangle,
+                ExcMessage("Material points: the cell centroid "
+                           "layout needs a (rotated) rectangular "
+                           "body region."));
+    const auto corners = region.corners();
+    for (unsigned int j = 0; j < grid.n_cells(1); ++j)
+      for (unsigned int i = 0; i < grid.n_cells(0); ++i)
+        {
+          if (!wanted_cell({{i, j}}))
+            continue;
+          // The part of the cell inside the body, then its area and
+          // centroid.
+          const Point<2>              o = grid.cell_origin({{i, j}});
+          const Tensor<1, 2>         &h = grid.cell_size();
+          const std::vector<Point<2>> polygon =
+            clip_cell_to_body(o, h, corners);
+          double   area = 0;
+          Point<2> centroid;
+          for (unsigned int m = 0; m < polygon.size(); ++m)
+            {
+              const Point<2> &p = polygon[m];
+              const Point<2> &q = polygon[(m + 1) % polygon.size()];
+              const double    a = p[0] * q[1] - q[0] * p[1];
+              area += a / 2;
+              centroid += a / 6 * (p + q);
+            }
+          if (area > 1e-12 * h[0] * h[1])
+            f(centroid / area,
+              area,
+              static_cast<unsigned long>(j) * grid.n_cells(0) + i);
+        }
+  }
+
+
+
+  void
+  MaterialPointLayout::for_each_polar_point(const BackgroundGrid &grid,
+                                            const BodyRegion     &region,
+                                            const WantedCell     &wanted_cell,
+                                            const PointVisitor   &f) const
+  {
+    AssertThrow(region.shape() == BodyRegion::Shape::annulus_sector,
+                ExcMessage("Material points: the polar layout needs "
+                           "an annulus sector body region."));
+    const auto  &s      = region.sector();
+    const double dr     = (s.outer_radius - s.inner_radius) / polar_points[0];
+    const double dtheta = (s.end_angle - s.start_angle) / polar_points[1];
+    for (unsigned int j = 0; j < polar_points[1]; ++j)
+      for (unsigned int i = 0; i < polar_points[0]; ++i)
+        {
+          const double   r0 = s.inner_radius + i * dr, r1 = r0 + dr;
+          const double   r     = (r0 + r1) / 2;
+          const double   theta = s.start_angle + (j + 0.5) * dtheta;
+          const Point<2> p(s.center[0] + r * std::cos(theta),
+                           s.center[1] + r * std::sin(theta));
+          if (in_wanted_cell(grid, wanted_cell, p))
+            f(p,
+              (r1 * r1 - r0 * r0) / 2 * dtheta,
+              static_cast<unsigned long>(j) * polar_points[0] + i);
+        }
+  }
+
 
 
   unsigned long

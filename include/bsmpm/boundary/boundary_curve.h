@@ -22,16 +22,11 @@ namespace bsmpm
    */
   struct BoundaryCurve
   {
-    /** How the supports of a curve are imposed. */
-    enum class DirichletMethod
-    {
-      implicit_boundary,
-      nitsche
-    };
-
-    std::string     name;
-    DirichletMethod dirichlet_method = DirichletMethod::implicit_boundary;
-    bool            closed           = false;
+    std::string name;
+    /** The registered name of the SupportMethod that imposes the curve's
+     * supports, its "Dirichlet method" ("implicit boundary", "nitsche"). */
+    std::string                 dirichlet_method = "implicit boundary";
+    bool                        closed           = false;
     std::vector<unsigned int>   corners;
     std::vector<CurveCondition> conditions;
     bool                        trims_material_points = false;

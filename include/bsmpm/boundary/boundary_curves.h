@@ -134,14 +134,15 @@ namespace bsmpm
      * (not rollers) count.
      */
     void
-    mark_support_cells(const BackgroundGrid                &grid,
-                       const BoundaryCurve::DirichletMethod method,
-                       const bool         both_components_only,
-                       std::vector<bool> &cells) const;
+    mark_support_cells(const BackgroundGrid &grid,
+                       const std::string    &method,
+                       const bool            both_components_only,
+                       std::vector<bool>    &cells) const;
 
-    /** Whether any curve carries a support imposed by @p method. */
+    /** Whether any curve carries a support imposed by the support method
+     * registered as @p method; by any method if @p method is empty. */
     bool
-    has_supports(const BoundaryCurve::DirichletMethod method) const;
+    has_supports(const std::string &method = "") const;
 
     /**
      * Whether the curves together are the whole boundary of the body, so

@@ -60,8 +60,8 @@ namespace bsmpm
    * and the length element is |C'(u_q)| (u_b - u_a) w_q, evaluated in this
    * order (the reference outputs depend on the last bit).
    *
-   * Contact (CurveContact) can walk the free pieces the same way:
-   * pieces(curves, a filter of condition == nullptr), with
+   * Contact (collect_pieces_per_cell()) walks the free pieces the same
+   * way: pieces(curves, free_pieces()), with
    * LocallyOwnedCurvePiece::curve_index for its per-curve data, and
    * reinit() only for the pieces near a rigid body.
    */
@@ -84,11 +84,15 @@ namespace bsmpm
     pieces(const BoundaryCurves &curves, const Filter &filter) const;
 
     /** Filters of pieces() used by several callers. */
-    /** The supports imposed by @p method; of the curve @p only alone
-     * unless nullptr. */
+    /** The supports imposed by the support method registered as
+     * @p method; of the curve @p only alone unless nullptr. */
     static Filter
-    supports_by(const BoundaryCurve::DirichletMethod method,
-                const BoundaryCurve                 *only = nullptr);
+    supports_by(const std::string &method, const BoundaryCurve *only = nullptr);
+
+    /** The free pieces, on which no condition acts: those that may touch
+     * a rigid body (contact). */
+    static Filter
+    free_pieces();
 
     /** Evaluates the Gauss points of @p piece and its cell's DoF indices. */
     void

@@ -4,9 +4,11 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/support_method.h>
@@ -18,6 +20,8 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace bsmpm
@@ -218,7 +222,104 @@ namespace bsmpm
       std::array<Tensor<1, 2>, Q1CellKernel::dofs_per_cell> trace_dt;
       Tensor<1, 2>                                          g;
       Tensor<1, 2>                                          dg_dt;
+
+      /**
+       * The band's correction Delta_i to the gradient of shape function
+       * @p i at a band point where the D-function is @p D and its
+       * derivative @p dD: the gradient of -(1 - D) P N_i(c) that u = w -
+       * (1 - D) P (w(c) - g) adds, its normal part dD N_i(c) (x) n for a
+       * fixed or prescribed support, and for a @p roller also the
+       * tangential part of the normal component (assemble() says why a
+       * full support keeps none). assemble() takes its symmetric part,
+       * add_finite_strain_terms() the whole gradient.
+       */
+      Tensor<2, 2>
+      band_correction(const unsigned int i,
+                      const double       D,
+                      const double       dD,
+                      const bool         roller) const;
+
+      /** The same correction Delta_g of the prescribed increment g, which
+       * enters like a prescribed strain. */
+      Tensor<2, 2>
+      prescribed_band_correction(const double D,
+                                 const double dD,
+                                 const bool   roller) const;
     };
+
+    /**
+     * A point of the band across Gauss point c of a piece, at distance
+     * phi = delta x_r inwards (x_r, w_r the r-th point and weight of the
+     * rule across the band on [0, 1]): its place x = c + phi n, its
+     * coordinates in the piece's cell, its weight ds delta w_r and the
+     * D-function and its derivative there.
+     */
+    struct BandSample
+    {
+      Point<2> position;
+      Point<2> cell_coordinates;
+      double   weight;
+      double   D;
+      double   dD;
+    };
+
+    /** The BandSample of point @p r of @p across at Gauss point @p q of
+     * @p values' piece, whose inward normal is @p normal, in a band of
+     * width @p delta on @p grid. */
+    BandSample
+    band_sample(const CurvePieceValues &values,
+                const unsigned int      q,
+                const Tensor<1, 2>     &normal,
+                const Quadrature<1>    &across,
+                const unsigned int      r,
+                const double            delta,
+                const BackgroundGrid   &grid) const;
+
+    /** What the small-strain terms at one band point are made of. */
+    struct BandPointTerms
+    {
+      /** The frame of the Gauss point the band point lies across from. */
+      const BoundaryFrame &frame;
+      BandSample           sample;
+      /** Whether the support holds the normal component only. */
+      bool roller;
+      /** Whether the support imposes its prescribed displacement itself
+       * (nearest-point correction). */
+      bool imposes;
+      /** The strain of the fitted prescribed values d^a (D-scaled forms;
+       * zero without). */
+      Voigt strain_a;
+      /** The boundary's stress of the previous steps at the Gauss point. */
+      Voigt sigma_previous;
+      /** The centroid of the cell's material with a B-bar kernel. */
+      std::optional<Point<2>> bbar_point;
+    };
+
+    /**
+     * The terms of the nearest-point correction at a band point (small
+     * strain): (B + Delta)^T C (B + Delta) - B^T C B into @p cell_matrix,
+     * and into @p cell_rhs the band's share of the internal force of the
+     * stress of the previous steps and of the fitted strain, and for a
+     * support that imposes a displacement the force of the prescribed
+     * increment's band strain Delta_g.
+     */
+    void
+    add_nearest_point_terms(const Context        &context,
+                            const BandPointTerms &point,
+                            FullMatrix<double>   &cell_matrix,
+                            Vector<double>       &cell_rhs) const;
+
+    /**
+     * The terms of the D-scaled formulations at a band point: u = P(D) w,
+     * the paper's k2 + k2^T + k3 (eqs. 24, 25) into @p cell_matrix and
+     * the band part of f^d (eq. 33) and of the internal force of the
+     * stress of the previous steps into @p cell_rhs.
+     */
+    void
+    add_d_scaled_terms(const Context        &context,
+                       const BandPointTerms &point,
+                       FullMatrix<double>   &cell_matrix,
+                       Vector<double>       &cell_rhs) const;
 
     /** Refuses what a formulation does not implement for the supports of
      * @p curves: a normal displacement (frame and paper), finite strain

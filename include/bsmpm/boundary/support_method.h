@@ -4,9 +4,11 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/curve_piece_values.h>
@@ -19,6 +21,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,11 +88,10 @@ namespace bsmpm
       Point<2>     reference_position; // in that cell
     };
 
-    /** A method registered as @p name (the value of "Dirichlet method"
-     * that selects it) that imposes the supports of the curves whose
-     * "Dirichlet method" is @p method. */
-    SupportMethod(const std::string                   &name,
-                  const BoundaryCurve::DirichletMethod method);
+    /** A method registered as @p name, the value of "Dirichlet method"
+     * that selects it: it imposes the supports of the curves whose
+     * "Dirichlet method" is @p name. */
+    SupportMethod(const std::string &name);
 
     virtual ~SupportMethod() = default;
 
@@ -108,14 +110,14 @@ namespace bsmpm
     bool
     imposes(const BoundaryCurve &curve) const
     {
-      return curve.dirichlet_method == method;
+      return curve.dirichlet_method == method_name;
     }
 
     /** Whether any curve has a support that this method imposes. */
     bool
     used_by(const BoundaryCurves &curves) const
     {
-      return curves.has_supports(method);
+      return curves.has_supports(method_name);
     }
 
     /** The pieces in locally owned cells of this method's supports (of
@@ -125,7 +127,8 @@ namespace bsmpm
                      const BoundaryCurves   &curves,
                      const BoundaryCurve    *only) const
     {
-      return values.pieces(curves, CurvePieceValues::supports_by(method, only));
+      return values.pieces(curves,
+                           CurvePieceValues::supports_by(method_name, only));
     }
 
     /**
@@ -221,9 +224,44 @@ namespace bsmpm
       TrilinosWrappers::SparseMatrix             &mass,
       LinearAlgebra::distributed::Vector<double> &prescribed) const;
 
+  protected:
+    /**
+     * Where a stress in the cell of @p piece takes its volumetric strain
+     * (Q1CellKernel::stress_column()): with a B-bar kernel, whose
+     * @p moments (by active_cell_index) are given, at the centroid of the
+     * cell's material, as the points' stiffness does; without (nullptr),
+     * at the stress's own point (no value).
+     */
+    static std::optional<Point<2>>
+    bbar_point(const std::vector<CellMoments> *moments,
+               const LocallyOwnedCurvePiece   &piece);
+
+    /** What a method adds on one piece of its supports: given @p values
+     * reinit()ed on the piece, its terms into @p cell_matrix and
+     * @p cell_vector (zero on entry), on the DoFs of the piece's cell. */
+    using PieceTerms = std::function<void(const CurvePieceValues &values,
+                                          FullMatrix<double>     &cell_matrix,
+                                          Vector<double>         &cell_vector)>;
+
+    /**
+     * The loop that the terms of every support method share, assemble()'s
+     * and add_finite_strain_terms()': over the pieces of this method's
+     * supports in locally owned cells (of the curve @p only alone unless
+     * nullptr), with the Gauss points @p along each piece, @p piece_terms
+     * per piece, its cell's terms added through @p constraints to
+     * @p vector and, unless nullptr, to @p matrix.
+     */
+    void
+    add_piece_terms(const Context                   &context,
+                    const Quadrature<1>             &along,
+                    const BoundaryCurve             *only,
+                    const AffineConstraints<double> &constraints,
+                    TrilinosWrappers::SparseMatrix  *matrix,
+                    TrilinosWrappers::MPI::Vector   &vector,
+                    const PieceTerms                &piece_terms) const;
+
   private:
-    const std::string                    method_name;
-    const BoundaryCurve::DirichletMethod method;
+    const std::string method_name;
   };
 
 
@@ -261,6 +299,10 @@ namespace bsmpm
   /** The registered support methods by name, in alphabetical order. */
   const std::map<std::string, SupportMethodEntry> &
   registered_support_methods();
+
+  /** Their names, separated by '|': the values of "Dirichlet method". */
+  std::string
+  support_method_names();
 } // namespace bsmpm
 
 /**

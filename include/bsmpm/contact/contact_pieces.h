@@ -99,8 +99,8 @@ namespace bsmpm
    * (where the body, moved to the increment's end, overlaps the curve that
    * has not moved yet).
    *
-   * This is the contact's loop over the curves' pieces in the cells
-   * (BoundaryCurve::pieces).
+   * This is the contact's loop over the curves' pieces in the cells, by
+   * CurvePieceValues as the loads' and the supports'.
    */
   std::vector<ContactPiece>
   collect_pieces_per_cell(const BoundaryCurves         &curves,

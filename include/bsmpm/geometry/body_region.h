@@ -120,6 +120,21 @@ namespace bsmpm
     }
 
   private:
+    /** The checks of parse_parameters(), one per shape: each refuses what
+     * makes no region, with a message that names the entry (the angles in
+     * degrees, as given). */
+    void
+    check_rectangle() const;
+    void
+    check_rotated_rectangle(const double angle_degrees) const;
+    void
+    check_annulus_sector(const double start_degrees,
+                         const double end_degrees) const;
+    /** At least three vertices, no two neighbours coincide, no two edges
+     * cross (a simple polygon), counter-clockwise. */
+    void
+    check_polygon() const;
+
     /** The parts of the boundary, each a map from [0, 1] along it, with
      * their names, in counter-clockwise order round the body. */
     void

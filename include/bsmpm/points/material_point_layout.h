@@ -78,6 +78,44 @@ namespace bsmpm
     }
 
   private:
+    using WantedCell = std::function<bool(const CellIndex &)>;
+    using PointVisitor =
+      std::function<void(const Point<2> &, double, unsigned long)>;
+
+    /** for_each_point() of the layout "per cell": n x n points at the
+     * centres of equal sub-cells of each wanted cell, each with its
+     * sub-cell's volume. */
+    void
+    for_each_point_per_cell(const BackgroundGrid &grid,
+                            const BodyRegion     &region,
+                            const WantedCell     &wanted_cell,
+                            const PointVisitor   &f) const;
+
+    /** "lattice": the centres of a regular lattice over the body's
+     * bounding box or the given rectangle, each with its lattice cell's
+     * volume. */
+    void
+    for_each_lattice_point(const BackgroundGrid &grid,
+                           const BodyRegion     &region,
+                           const WantedCell     &wanted_cell,
+                           const PointVisitor   &f) const;
+
+    /** "cell centroid": one point per wanted cell at the centroid of the
+     * cell's part of a (rotated) rectangle, with that part's area. */
+    void
+    for_each_cell_centroid(const BackgroundGrid &grid,
+                           const BodyRegion     &region,
+                           const WantedCell     &wanted_cell,
+                           const PointVisitor   &f) const;
+
+    /** "polar": the centres of a polar grid over an annulus sector, each
+     * with its polar cell's exact area. */
+    void
+    for_each_polar_point(const BackgroundGrid &grid,
+                         const BodyRegion     &region,
+                         const WantedCell     &wanted_cell,
+                         const PointVisitor   &f) const;
+
     Kind                        layout          = Kind::per_cell;
     unsigned int                points_per_cell = 2;
     std::array<unsigned int, 2> lattice_points  = {{1, 1}};
