@@ -18,6 +18,23 @@ using namespace dealii;
 
 using namespace bsmpm;
 
+// Both parts' closed curves: n points on a circle.
+namespace
+{
+  std::vector<Point<2>>
+  circle_points(const unsigned int n, const Point<2> &center, const double r)
+  {
+    std::vector<Point<2>> points;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double phi = 2 * numbers::PI * i / n;
+        points.emplace_back(center[0] + r * std::cos(phi),
+                            center[1] + r * std::sin(phi));
+      }
+    return points;
+  }
+} // namespace
+
 // BSplineCurve: local cubic interpolation (method-notes Sec. 2), checked
 // against what the construction promises and against an independent
 // Cox-de Boor evaluation of the knot vector (paper eqs. 10-12).
@@ -62,18 +79,6 @@ namespace spline_checks
       return std::round(100 * x) / 100;
     }
 
-    std::vector<Point<2>>
-    circle_points(const unsigned int n, const Point<2> &center, const double r)
-    {
-      std::vector<Point<2>> points;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          const double phi = 2 * numbers::PI * i / n;
-          points.emplace_back(center[0] + r * std::cos(phi),
-                              center[1] + r * std::sin(phi));
-        }
-      return points;
-    }
 
     std::vector<Point<2>>
     paper_points()
@@ -645,18 +650,6 @@ namespace intersection_checks
       return points;
     }
 
-    std::vector<Point<2>>
-    circle_points(const unsigned int n, const Point<2> &center, const double r)
-    {
-      std::vector<Point<2>> points;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          const double phi = 2 * numbers::PI * i / n;
-          points.emplace_back(center[0] + r * std::cos(phi),
-                              center[1] + r * std::sin(phi));
-        }
-      return points;
-    }
   } // namespace
 
 
