@@ -1,5 +1,5 @@
 // The checks that the unit tests of the constitutive models share
-// (the parts of materials/constitutive_models): the material
+// (elastic_01.h, von_mises_01.h, drucker_prager_01.h): the material
 // constants, trial strains built backwards from a known return, and the
 // checks every model undergoes: update() against the known return,
 // plane_strain_update() against update(), and elastic_reach().
