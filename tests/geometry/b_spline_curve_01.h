@@ -16,6 +16,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "circle_points.h"
+
 using namespace bsmpm;
 
 namespace b_spline_curve_01
@@ -59,18 +61,6 @@ namespace b_spline_curve_01
       return std::round(100 * x) / 100;
     }
 
-    std::vector<Point<2>>
-    circle_points(const unsigned int n, const Point<2> &center, const double r)
-    {
-      std::vector<Point<2>> points;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          const double phi = 2 * numbers::PI * i / n;
-          points.emplace_back(center[0] + r * std::cos(phi),
-                              center[1] + r * std::sin(phi));
-        }
-      return points;
-    }
 
     std::vector<Point<2>>
     paper_points()

@@ -17,6 +17,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "circle_points.h"
+
 using namespace bsmpm;
 
 namespace curve_cell_intersection_01
@@ -159,18 +161,6 @@ namespace curve_cell_intersection_01
       return points;
     }
 
-    std::vector<Point<2>>
-    circle_points(const unsigned int n, const Point<2> &center, const double r)
-    {
-      std::vector<Point<2>> points;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          const double phi = 2 * numbers::PI * i / n;
-          points.emplace_back(center[0] + r * std::cos(phi),
-                              center[1] + r * std::sin(phi));
-        }
-      return points;
-    }
   } // namespace
 
 
