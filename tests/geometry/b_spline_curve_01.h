@@ -16,7 +16,7 @@ using namespace dealii;
 
 #include "../tests.h"
 
-#include "circle_points.h"
+#include "test_curves.h"
 
 using namespace bsmpm;
 
@@ -59,19 +59,6 @@ namespace b_spline_curve_01
     round2(const double x)
     {
       return std::round(100 * x) / 100;
-    }
-
-
-    std::vector<Point<2>>
-    paper_points()
-    {
-      const double x[] = {0, 0.1, 0.35, 0.6, 0.73, 1, 1.5, 1.75, 2, 1.78, 1.5};
-      const double y[] = {
-        1.5, 1.75, 1.95, 1.8, 1.31, 1.15, 1.35, 1.3, 0.75, 0.21, 0};
-      std::vector<Point<2>> points;
-      for (unsigned int i = 0; i < 11; ++i)
-        points.emplace_back(x[i], y[i]);
-      return points;
     }
 
     // Largest distance between the tangent directions on the two sides of the

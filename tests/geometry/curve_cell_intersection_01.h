@@ -17,7 +17,7 @@ using namespace dealii;
 
 #include "../tests.h"
 
-#include "circle_points.h"
+#include "test_curves.h"
 
 using namespace bsmpm;
 
@@ -149,17 +149,6 @@ namespace curve_cell_intersection_01
       return {Point<2>(0, 0), Tensor<1, 2>({1. / n, 1. / n}), {{n, n}}};
     }
 
-    std::vector<Point<2>>
-    paper_points()
-    {
-      const double x[] = {0, 0.1, 0.35, 0.6, 0.73, 1, 1.5, 1.75, 2, 1.78, 1.5};
-      const double y[] = {
-        1.5, 1.75, 1.95, 1.8, 1.31, 1.15, 1.35, 1.3, 0.75, 0.21, 0};
-      std::vector<Point<2>> points;
-      for (unsigned int i = 0; i < 11; ++i)
-        points.emplace_back(x[i], y[i]);
-      return points;
-    }
 
   } // namespace
 
