@@ -515,12 +515,35 @@ namespace bsmpm
     // left the others in the next collective, and the footing at h = 1/64
     // on two processes stopped with MPI_ERR_TRUNCATE in step 13. A new
     // layout is taken on every process first.
-    if (tangent_layout != matrix_layouts)
+    // Contact with pressures at the grid nodes couples DoFs two cells
+    // apart: the tangent then has a pattern of its own, the system's
+    // widened round the contact (the same cells on every process), and
+    // takes the system matrix's entries by add().
+    const std::vector<std::array<unsigned int, 2>> *coupled =
+      parts.contact != nullptr ? parts.contact->coupled_cells() : nullptr;
+    if (coupled != nullptr)
       {
-        tangent_matrix.reinit(system_matrix);
-        tangent_layout = matrix_layouts;
+        if (tangent_layout != matrix_layouts ||
+            !contact_pattern.covers(grid, *coupled))
+          {
+            contact_pattern.widen(grid,
+                                  *coupled,
+                                  system_matrix,
+                                  tangent_matrix);
+            tangent_layout = matrix_layouts;
+          }
+        tangent_matrix = 0;
+        tangent_matrix.add(1., system_matrix);
       }
-    tangent_matrix.copy_from(system_matrix);
+    else
+      {
+        if (tangent_layout != matrix_layouts)
+          {
+            tangent_matrix.reinit(system_matrix);
+            tangent_layout = matrix_layouts;
+          }
+        tangent_matrix.copy_from(system_matrix);
+      }
     if (!tangent_scatter.serves(tangent_matrix))
       tangent_scatter.reinit(tangent_matrix,
                              grid.triangulation().n_active_cells());

@@ -117,4 +117,24 @@ namespace bsmpm
           point_tractions[c] = std::move(tractions);
         }
   }
+  void
+  ContactHistory::store(const BoundaryCurves             &curves,
+                        const std::vector<PointTraction> &tractions,
+                        const MPI_Comm                    communicator)
+  {
+    const auto                      &all_curves = curves.get_curves();
+    std::vector<std::vector<double>> sums(all_curves.size());
+    for (unsigned int c = 0; c < all_curves.size(); ++c)
+      sums[c].assign(2 * all_curves[c].positions.size(), 0.);
+    for (const PointTraction &point : tractions)
+      for (unsigned int d = 0; d < 2; ++d)
+        sums[point.curve][2 * point.index + d] += point.traction[d];
+    for (unsigned int c = 0; c < all_curves.size(); ++c)
+      {
+        Utilities::MPI::sum(sums[c], communicator, sums[c]);
+        for (unsigned int k = 0; k < all_curves[c].positions.size(); ++k)
+          point_tractions[c][k] =
+            Tensor<1, 2>({sums[c][2 * k], sums[c][2 * k + 1]});
+      }
+  }
 } // namespace bsmpm

@@ -91,6 +91,7 @@ namespace bsmpm
                     .to_feature(x, end, contact_piece.features.back())
                     .gap <= 1e-12 * h);
                 contact_piece.weights.push_back(values.JxW(q));
+                contact_piece.curve_normals.push_back(values.normal(q));
                 contact_piece.previous.push_back(
                   history.at(piece.curve_index,
                              *piece.curve,
@@ -207,6 +208,8 @@ namespace bsmpm
                     piece.weights.push_back(
                       spline.derivative(u - shifts[r]).norm() * (hi - lo) *
                       gauss.weight(q));
+                    piece.curve_normals.push_back(
+                      spline.outward_normal(u - shifts[r]));
                     piece.phi.push_back((u - u_first) / (u_last - u_first));
                     piece.previous.push_back(
                       traction_at(P[parts[r]], u - shifts[r]));

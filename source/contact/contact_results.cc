@@ -18,34 +18,63 @@ namespace bsmpm
                           const std::vector<ContactPieceState> &states,
                           const MPI_Comm                        communicator)
   {
-    const unsigned int  n_bodies = resultants.size();
-    std::vector<double> sums(4 * n_bodies, 0.);
-    std::vector<double> penetration(n_bodies, 0.);
-    piece_rows.clear();
+    std::vector<Touch>  touches;
+    std::vector<double> penetration(resultants.size(), 0.);
     for (unsigned int p = 0; p < pieces.size(); ++p)
       {
         const ContactPiece      &piece = pieces[p];
         const ContactPieceState &state = states[p];
         if (!state.active)
           continue;
-        // The rigid body feels the opposite of what the curve feels.
-        sums[4 * piece.body + 0] -= state.resultant[0];
-        sums[4 * piece.body + 1] -= state.resultant[1];
-        sums[4 * piece.body + 2] += state.contact_length;
-        sums[4 * piece.body + 3] += state.sliding_length;
+        Touch touch;
+        touch.body           = piece.body;
+        touch.curve          = piece.curve;
+        touch.normal         = state.normal;
+        touch.x              = state.midpoint;
+        touch.gap            = state.gap;
+        touch.pressure       = state.pressure;
+        touch.tangential     = state.tangential;
+        touch.length         = state.contact_length;
+        touch.contact_length = state.contact_length;
+        touch.sliding_length = state.sliding_length;
+        touch.sliding        = state.sliding;
+        touch.resultant      = state.resultant;
+        touches.push_back(touch);
         penetration[piece.body] = std::max(penetration[piece.body], -state.gap);
+      }
+    collect(touches, penetration, communicator);
+  }
+
+
+
+  void
+  ContactResults::collect(const std::vector<Touch>  &touches,
+                          const std::vector<double> &local_penetration,
+                          const MPI_Comm             communicator)
+  {
+    const unsigned int  n_bodies = resultants.size();
+    std::vector<double> sums(4 * n_bodies, 0.);
+    std::vector<double> penetration = local_penetration;
+    piece_rows.clear();
+    for (const Touch &touch : touches)
+      {
+        // The rigid body feels the opposite of what the curve feels.
+        sums[4 * touch.body + 0] -= touch.resultant[0];
+        sums[4 * touch.body + 1] -= touch.resultant[1];
+        sums[4 * touch.body + 2] += touch.contact_length;
+        sums[4 * touch.body + 3] += touch.sliding_length;
         piece_rows.insert(piece_rows.end(),
-                          {double(piece.body + 1),
-                           double(piece.curve + 1),
-                           state.midpoint[0],
-                           state.midpoint[1],
-                           state.normal[0],
-                           state.normal[1],
-                           state.gap,
-                           state.pressure,
-                           state.tangential,
-                           state.contact_length,
-                           state.sliding ? 1. : 0.});
+                          {double(touch.body + 1),
+                           double(touch.curve + 1),
+                           touch.x[0],
+                           touch.x[1],
+                           touch.normal[0],
+                           touch.normal[1],
+                           touch.gap,
+                           touch.pressure,
+                           touch.tangential,
+                           touch.length,
+                           touch.sliding ? 1. : 0.});
       }
     Utilities::MPI::sum(sums, communicator, sums);
     Utilities::MPI::max(penetration, communicator, penetration);

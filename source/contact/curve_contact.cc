@@ -40,7 +40,7 @@ namespace bsmpm
     prm.declare_entry(
       "Pressure",
       "automatic",
-      Patterns::Selection("automatic|per cell|at grid lines"),
+      Patterns::Selection("automatic|per cell|at grid lines|at grid nodes"),
       "Where the contact pressure is taken (doc/contact.md). 'per cell': one "
       "pressure for the mean gap of the touching part of each cell's piece of "
       "curve. 'at grid lines': the curve's displacement taken where it "
@@ -125,8 +125,13 @@ namespace bsmpm
     prm.leave_subsection();
     augmented = method == "augmented Lagrangian" ||
                 (method == "automatic" && !finite_strain);
-    pressure_at_crossings =
-      where == "at grid lines" || (where == "automatic" && finite_strain);
+    pressure_at_nodes = where == "at grid nodes";
+    pressure_at_crossings = pressure_at_nodes || where == "at grid lines" ||
+                            (where == "automatic" && finite_strain);
+    // The nodes' pressures are continuous and need no multipliers to hold
+    // a flat base: the penalty alone (doc/contact.md).
+    if (pressure_at_nodes)
+      augmented = false;
     augmentation.initialize(tolerance,
                             max_augmentations,
                             pressure_at_crossings);
@@ -167,6 +172,8 @@ namespace bsmpm
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (bodies[b].has_free_motion())
         touch_if_free(b, grid);
+    if (pressure_at_nodes)
+      contact_nodes.reinit(pieces, curves, bodies, body_motion, grid);
     if (augmented)
       augmentation.initialize_multipliers(pieces, bodies, body_motion);
   }
@@ -306,6 +313,34 @@ namespace bsmpm
       body_motion.reset_bordered_terms(grid.locally_owned_dofs(),
                                        grid.mpi_communicator(),
                                        terms.penalty() * grid.min_cell_size());
+    if (pressure_at_nodes)
+      {
+        const NodalContactTerms::State state =
+          NodalContactTerms::evaluate(terms,
+                                      contact_nodes,
+                                      bodies,
+                                      body_motion,
+                                      grid,
+                                      kernel,
+                                      increment,
+                                      prescribed);
+        NodalContactTerms::add_newton_terms(
+          state, contact_nodes, grid, constraints, body_motion, tangent, force);
+        if (check_tangent)
+          tangent_check.add(NodalContactTerms::relative_error(terms,
+                                                              contact_nodes,
+                                                              bodies,
+                                                              body_motion,
+                                                              grid,
+                                                              kernel,
+                                                              increment,
+                                                              prescribed,
+                                                              state),
+                            !state.symmetric);
+        if (bordered)
+          body_motion.finish_bordered_terms(bodies, to);
+        return state.symmetric;
+      }
     bool               symmetric = true;
     FullMatrix<double> stiffness(n, n);
     Vector<double>     cell_force(n), column(n), row(n);
@@ -379,6 +414,8 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
+    if (pressure_at_nodes)
+      return false;
     // The touching parts first: the multipliers are updated only at a
     // solve whose parts stand (changing both at once, the parts and the
     // pressures fed each other).
@@ -453,14 +490,97 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
-    const MPI_Comm                       communicator = grid.mpi_communicator();
-    const std::vector<ContactPieceState> states =
-      evaluate_all(grid, kernel, increment, prescribed);
-    results.collect(pieces, states, communicator);
+    const MPI_Comm communicator = grid.mpi_communicator();
+    if (pressure_at_nodes)
+      finish_nodal_increment(curves,
+                             grid,
+                             NodalContactTerms::evaluate(terms,
+                                                         contact_nodes,
+                                                         bodies,
+                                                         body_motion,
+                                                         grid,
+                                                         kernel,
+                                                         increment,
+                                                         prescribed));
+    else
+      {
+        const std::vector<ContactPieceState> states =
+          evaluate_all(grid, kernel, increment, prescribed);
+        results.collect(pieces, states, communicator);
+        history.store(curves, pieces, states, communicator);
+      }
     if (check_tangent)
       tangent_check.gather(communicator);
-    history.store(curves, pieces, states, communicator);
     body_motion.accept();
+  }
+
+
+
+  void
+  CurveContact::finish_nodal_increment(const BoundaryCurves           &curves,
+                                       const BackgroundGrid           &grid,
+                                       const NodalContactTerms::State &state)
+  {
+    // The places that carry a pressure (p(x) > 0) touch: the curve's arc
+    // in contact, the traction p n + tau t on it.
+    const auto                        &points = contact_nodes.points();
+    std::vector<ContactResults::Touch> touches;
+    std::vector<double>                penetration(bodies.size(), 0.);
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const NodalContactTerms::PointState &here = state.points[q];
+        if (!here.active || !(here.pressure > 0 || here.tangential != 0))
+          continue;
+        const Tensor<1, 2>   &n = here.surface.normal;
+        ContactResults::Touch touch;
+        touch.body           = points[q].body;
+        touch.curve          = points[q].curve;
+        touch.x              = here.x;
+        touch.normal         = n;
+        touch.gap            = here.surface.gap;
+        touch.pressure       = here.pressure;
+        touch.tangential     = here.tangential;
+        touch.length         = points[q].weight;
+        touch.contact_length = points[q].weight;
+        touch.sliding        = here.sliding;
+        touch.sliding_length = here.sliding ? points[q].weight : 0.;
+        touch.resultant =
+          points[q].weight *
+          (here.pressure * n + here.tangential * Tensor<1, 2>({-n[1], n[0]}));
+        touches.push_back(touch);
+      }
+    // The largest mean penetration of a node (the same on all processes).
+    for (unsigned int a = 0; a < state.nodes.size(); ++a)
+      if (state.nodes[a].traction.active)
+        {
+          const ContactNodes::Node &node = contact_nodes.nodes()[a];
+          penetration[node.body] =
+            std::max(penetration[node.body], -state.nodes[a].gap / node.weight);
+        }
+    results.collect(touches, penetration, grid.mpi_communicator());
+
+    // The tractions at the curves' points in the pieces, interpolated from
+    // the nodes as along the curve, for the next increment's friction.
+    std::vector<ContactHistory::PointTraction> tractions;
+    for (const ContactNodes::CurvePoint &knot : contact_nodes.curve_points())
+      {
+        double p = 0, tau = 0;
+        for (unsigned int v = 0; v < 4; ++v)
+          if (knot.nodes[v] != numbers::invalid_unsigned_int &&
+              state.nodes[knot.nodes[v]].traction.active)
+            {
+              p += knot.shape[v] * state.nodes[knot.nodes[v]].traction.pressure;
+              tau +=
+                knot.shape[v] * state.nodes[knot.nodes[v]].traction.tangential;
+            }
+        const Tensor<1, 2> n =
+          bodies[knot.body]
+            .to_feature(knot.position, body_motion.end(knot.body), knot.feature)
+            .normal;
+        tractions.push_back(
+          {knot.curve, knot.index, p * n + tau * Tensor<1, 2>({-n[1], n[0]})});
+      }
+    history.store(curves, tractions, grid.mpi_communicator());
   }
 
 

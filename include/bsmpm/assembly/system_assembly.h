@@ -14,6 +14,7 @@
 #include <bsmpm/boundary/ghost_penalty.h>
 #include <bsmpm/boundary/neumann_loads.h>
 #include <bsmpm/boundary/support_methods.h>
+#include <bsmpm/contact/contact_pattern.h>
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
@@ -312,8 +313,11 @@ namespace bsmpm
     TrilinosWrappers::SparseMatrix             tangent_matrix;
     /** How many times make_matrix() has built system_matrix's layout, and
      * which of them tangent_matrix has (see newton_system()). */
-    unsigned int                  matrix_layouts = 0;
-    unsigned int                  tangent_layout = 0;
+    unsigned int matrix_layouts = 0;
+    unsigned int tangent_layout = 0;
+    /** With contact pressures at the grid nodes: tangent_matrix's pattern
+     * widened round the contact (CurveContact::coupled_cells()). */
+    ContactPattern                contact_pattern;
     TrilinosWrappers::MPI::Vector newton_residual;
     unsigned long long            yielding            = 0;
     bool                          contact_symmetric   = true;

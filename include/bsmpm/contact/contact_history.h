@@ -52,6 +52,22 @@ namespace bsmpm
           const std::vector<ContactPieceState> &states,
           const MPI_Comm                        communicator);
 
+    /** The traction at one of the curves' points. */
+    struct PointTraction
+    {
+      unsigned int curve = 0;
+      unsigned int index = 0;
+      Tensor<1, 2> traction;
+    };
+
+    /** Keeps the tractions of the converged increment at the points of
+     * @p tractions (this process's; a point given by two processes takes
+     * the sum), zero elsewhere. Collective. */
+    void
+    store(const BoundaryCurves             &curves,
+          const std::vector<PointTraction> &tractions,
+          const MPI_Comm                    communicator);
+
     /** Carries the history over to the chains that
      * BoundaryCurves::adapt_point_spacing() changed: a new point takes the
      * mean of its two origins'. */

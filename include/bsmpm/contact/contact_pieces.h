@@ -54,6 +54,8 @@ namespace bsmpm
     double                u_end   = 0;
     std::vector<Point<2>> positions;
     std::vector<double>   weights; ///< ds
+    /** The body's outward normal of the curve there. */
+    std::vector<Tensor<1, 2>> curve_normals;
     /** The part of the outline each Gauss point measures its gap to:
      * the nearest at the increment's start. */
     std::vector<unsigned int> features;

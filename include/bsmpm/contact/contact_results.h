@@ -28,6 +28,28 @@ namespace bsmpm
   class ContactResults
   {
   public:
+    /** A place where a curve touches a body: a piece (one pressure per cell,
+     * at the grid lines) or a Gauss point (at the grid nodes). */
+    struct Touch
+    {
+      unsigned int body  = 0;
+      unsigned int curve = 0;
+      Point<2>     x;
+      /** The rigid surface's outward normal there. */
+      Tensor<1, 2> normal;
+      double       gap        = 0;
+      double       pressure   = 0;
+      double       tangential = 0;
+      /** The length it stands for, and of it the length that touches
+       * and that slides. */
+      double length         = 0;
+      double contact_length = 0;
+      double sliding_length = 0;
+      bool   sliding        = false;
+      /** The traction's integral: the force on the curve. */
+      Tensor<1, 2> resultant;
+    };
+
     /** No results yet (zeros) for @p n_bodies bodies. */
     void
     reinit(const unsigned int n_bodies);
@@ -38,6 +60,14 @@ namespace bsmpm
     collect(const std::vector<ContactPiece>      &pieces,
             const std::vector<ContactPieceState> &states,
             const MPI_Comm                        communicator);
+
+    /** The results of @p touches (this process's) with the largest
+     * penetration @p penetration per body (of this process) on all
+     * processes. Collective. */
+    void
+    collect(const std::vector<Touch>  &touches,
+            const std::vector<double> &penetration,
+            const MPI_Comm             communicator);
 
     /** Adds rigid_body_N_force_x/y (the force of the body on the rigid
      * body, N/m), _displacement_x/y (where @p motion has it),

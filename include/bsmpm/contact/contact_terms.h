@@ -101,6 +101,13 @@ namespace bsmpm
       return eps;
     }
 
+    /** The gap up to which a place counts as touching. */
+    double
+    touching_tolerance() const
+    {
+      return tolerance;
+    }
+
     /** The contact law on the surface of @p body. */
     ContactLaw
     law(const RigidBody &body) const;

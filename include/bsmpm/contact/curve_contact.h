@@ -11,10 +11,12 @@
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/contact/contact_augmentation.h>
 #include <bsmpm/contact/contact_history.h>
+#include <bsmpm/contact/contact_nodes.h>
 #include <bsmpm/contact/contact_pieces.h>
 #include <bsmpm/contact/contact_results.h>
 #include <bsmpm/contact/contact_tangent_check.h>
 #include <bsmpm/contact/contact_terms.h>
+#include <bsmpm/contact/nodal_contact_terms.h>
 #include <bsmpm/contact/pressure_balance.h>
 #include <bsmpm/contact/rigid_body.h>
 #include <bsmpm/contact/rigid_body_motion.h>
@@ -23,6 +25,7 @@
 #include <bsmpm/points/q1_cell_kernel.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <ostream>
 #include <string>
@@ -91,6 +94,16 @@ namespace bsmpm
     rigid_bodies() const
     {
       return bodies;
+    }
+
+    /** With pressures at the grid nodes: the cells (of all processes)
+     * whose DoFs the contact's stiffness couples with those of the 3 x 3
+     * cells round them (ContactPattern); otherwise nullptr (the cell
+     * pattern holds the contact's terms). */
+    const std::vector<std::array<unsigned int, 2>> *
+    coupled_cells() const
+    {
+      return pressure_at_nodes ? &contact_nodes.cells() : nullptr;
     }
 
     /** Where the bodies are in the present increment, and the unknowns of
@@ -251,6 +264,13 @@ namespace bsmpm
 
     /** What contact does on every piece at @p increment (ghosted;
      * @p prescribed as for the points). */
+    /** With pressures at the grid nodes: the tractions at the curves'
+     * points and the touching places for the results, from @p state. */
+    void
+    finish_nodal_increment(const BoundaryCurves           &curves,
+                           const BackgroundGrid           &grid,
+                           const NodalContactTerms::State &state);
+
     std::vector<ContactPieceState>
     evaluate_all(
       const BackgroundGrid                             &grid,
@@ -264,6 +284,9 @@ namespace bsmpm
     /** 'Contact/Pressure': one pressure per crossing of a curve with a
      * grid line (true) or per piece of curve in a cell. */
     bool pressure_at_crossings = true;
+    /** 'Contact/Pressure = at grid nodes': one pressure per grid node
+     * (ContactNodes, NodalContactTerms). */
+    bool pressure_at_nodes = false;
     /** The tilt's penalty as a factor of the mean gap's. */
     double       gamma_tilt     = 0;
     bool         check_tangent  = false;
@@ -280,6 +303,8 @@ namespace bsmpm
 
     /** The candidate pieces of the present increment. */
     std::vector<ContactPiece> pieces;
+    /** With pressures at the grid nodes: the nodes of the pieces. */
+    ContactNodes contact_nodes;
     /** The contact law and the force and tangent on a piece, with the
      * penalty of the present increment. */
     ContactTerms        terms;
