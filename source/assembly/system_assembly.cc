@@ -99,6 +99,9 @@ namespace bsmpm
                                                grid.locally_owned_dofs(),
                                                comm,
                                                grid.locally_relevant_dofs());
+    // Kept for a tangent whose pattern contact widens.
+    if (parts.contact != nullptr && parts.contact->coupled_cells() != nullptr)
+      contact_pattern.keep(dsp);
     support_layout_current = false;
     scatter.clear();
     tangent_scatter.clear();
@@ -515,7 +518,7 @@ namespace bsmpm
     // left the others in the next collective, and the footing at h = 1/64
     // on two processes stopped with MPI_ERR_TRUNCATE in step 13. A new
     // layout is taken on every process first.
-    // Contact with pressures at the grid nodes couples DoFs two cells
+    // Mortar contact pressures couple DoFs two cells
     // apart: the tangent then has a pattern of its own, the system's
     // widened round the contact (the same cells on every process), and
     // takes the system matrix's entries by add().
@@ -526,10 +529,7 @@ namespace bsmpm
         if (tangent_layout != matrix_layouts ||
             !contact_pattern.covers(grid, *coupled))
           {
-            contact_pattern.widen(grid,
-                                  *coupled,
-                                  system_matrix,
-                                  tangent_matrix);
+            contact_pattern.widen(grid, *coupled, tangent_matrix);
             tangent_layout = matrix_layouts;
           }
         tangent_matrix = 0;

@@ -8,6 +8,24 @@
 
 namespace bsmpm
 {
+  void
+  ContactPattern::keep(const DynamicSparsityPattern &system)
+  {
+    n_dofs         = system.n_rows();
+    system_row_set = system.row_index_set();
+    system_rows.clear();
+    covered.clear();
+    for (const auto row : system_row_set)
+      {
+        std::vector<types::global_dof_index> columns;
+        for (auto entry = system.begin(row); entry != system.end(row); ++entry)
+          columns.push_back(entry->column());
+        system_rows.emplace_back(row, std::move(columns));
+      }
+  }
+
+
+
   bool
   ContactPattern::covers(
     const BackgroundGrid                           &grid,
@@ -27,7 +45,6 @@ namespace bsmpm
   void
   ContactPattern::widen(const BackgroundGrid                           &grid,
                         const std::vector<std::array<unsigned int, 2>> &cells,
-                        const TrilinosWrappers::SparseMatrix           &system,
                         TrilinosWrappers::SparseMatrix                 &tangent)
   {
     const int n_x = grid.n_cells(0), n_y = grid.n_cells(1);
@@ -53,10 +70,9 @@ namespace bsmpm
           dofs.resize(Q1CellKernel::dofs_per_cell);
           cell->get_dof_indices(dofs);
         }
-    DynamicSparsityPattern dsp(grid.locally_relevant_dofs());
-    for (const auto row : grid.locally_owned_dofs())
-      for (auto entry = system.begin(row); entry != system.end(row); ++entry)
-        dsp.add(row, entry->column());
+    DynamicSparsityPattern dsp(n_dofs, n_dofs, system_row_set);
+    for (const auto &[row, columns] : system_rows)
+      dsp.add_entries(row, columns.begin(), columns.end(), true);
     // Both ways, so that the pattern stays symmetric.
     for (const auto &[cell, ij] : grid.locally_owned_cells())
       if (covered[ij[1] * n_x + ij[0]])

@@ -2,8 +2,6 @@
 #include <bsmpm/points/material_points.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <iostream>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -170,9 +168,6 @@ namespace bsmpm
         history.multiplier          = all[a].multiplier;
         history.previous_tangential = node.previous / W;
         node.traction = law.evaluate(node.gap / W, node.slip / W, history);
-        if (std::getenv("BSMPM_DEBUG_NODES"))
-          std::cerr << "node " << a << " key " << all[a].key << " W " << W << " g " << node.gap / W
-                    << " p " << node.traction.pressure << '\n';
         if (!node.traction.active)
           continue;
         state.symmetric = state.symmetric && !node.traction.sliding;

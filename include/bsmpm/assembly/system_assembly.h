@@ -315,9 +315,11 @@ namespace bsmpm
      * which of them tangent_matrix has (see newton_system()). */
     unsigned int matrix_layouts = 0;
     unsigned int tangent_layout = 0;
-    /** With contact pressures at the grid nodes: tangent_matrix's pattern
+    /** With mortar contact pressures: tangent_matrix's pattern
      * widened round the contact (CurveContact::coupled_cells()). */
-    ContactPattern                contact_pattern;
+    ContactPattern contact_pattern;
+    /** The pattern of system_matrix, kept with rigid bodies only. */
+    DynamicSparsityPattern        system_pattern;
     TrilinosWrappers::MPI::Vector newton_residual;
     unsigned long long            yielding            = 0;
     bool                          contact_symmetric   = true;

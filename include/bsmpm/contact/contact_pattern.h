@@ -1,6 +1,7 @@
 #ifndef bsmpm_contact_pattern_h
 #define bsmpm_contact_pattern_h
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <bsmpm/geometry/background_grid.h>
@@ -13,9 +14,9 @@ namespace bsmpm
   using namespace dealii;
 
   /**
-   * The pattern of the Newton tangent where contact has pressures at the
-   * grid nodes (NodalContactTerms): a node's stiffness eps / W_a c_a c_a^T
-   * couples the DoFs of all the cells round its vertex, DoFs up to two
+   * The pattern of the Newton tangent where contact has mortar pressures
+   * (NodalContactTerms): a node's stiffness eps / W_a c_a c_a^T couples
+   * the DoFs of the cells on either side of its crossing, DoFs up to two
    * cells apart, which the cell pattern of the system matrix does not
    * hold. The tangent then gets a pattern of its own: the system's, with
    * the DoFs of every cell within two cells of the contact's cells coupled
@@ -32,18 +33,28 @@ namespace bsmpm
     covers(const BackgroundGrid                           &grid,
            const std::vector<std::array<unsigned int, 2>> &cells) const;
 
-    /** Gives @p tangent the pattern of @p system widened round @p cells
-     * (the same list on every process). Collective. */
+    /** Keeps the system matrix's pattern @p system (with the rows of ghost
+     * DoFs that the cells' assembly adds to), after its distribution. */
+    void
+    keep(const DynamicSparsityPattern &system);
+
+    /** Gives @p tangent the pattern kept last widened round @p cells (the
+     * same list on every process). Collective. */
     void
     widen(const BackgroundGrid                           &grid,
           const std::vector<std::array<unsigned int, 2>> &cells,
-          const TrilinosWrappers::SparseMatrix           &system,
           TrilinosWrappers::SparseMatrix                 &tangent);
 
   private:
     /** Per cell of the grid (i + j n_x): whether the pattern couples its
      * DoFs with those of the cells round it. */
     std::vector<bool> covered;
+    /** The rows of the system matrix's pattern: (row, columns). */
+    std::vector<
+      std::pair<types::global_dof_index, std::vector<types::global_dof_index>>>
+                            system_rows;
+    IndexSet                system_row_set;
+    types::global_dof_index n_dofs = 0;
   };
 } // namespace bsmpm
 

@@ -29,7 +29,7 @@ namespace bsmpm
   {
   public:
     /** A place where a curve touches a body: a piece (one pressure per cell,
-     * at the grid lines) or a Gauss point (at the grid nodes). */
+     * at the grid lines) or a Gauss point (mortar pressures). */
     struct Touch
     {
       unsigned int body  = 0;

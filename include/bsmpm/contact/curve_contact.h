@@ -96,7 +96,7 @@ namespace bsmpm
       return bodies;
     }
 
-    /** With pressures at the grid nodes: the cells (of all processes)
+    /** With the mortar pressures: the cells (of all processes)
      * whose DoFs the contact's stiffness couples with those of the 3 x 3
      * cells round them (ContactPattern); otherwise nullptr (the cell
      * pattern holds the contact's terms). */
@@ -264,7 +264,7 @@ namespace bsmpm
 
     /** What contact does on every piece at @p increment (ghosted;
      * @p prescribed as for the points). */
-    /** With pressures at the grid nodes: the tractions at the curves'
+    /** With the mortar pressures: the tractions at the curves'
      * points and the touching places for the results, from @p state. */
     void
     finish_nodal_increment(const BoundaryCurves           &curves,
@@ -284,8 +284,9 @@ namespace bsmpm
     /** 'Contact/Pressure': one pressure per crossing of a curve with a
      * grid line (true) or per piece of curve in a cell. */
     bool pressure_at_crossings = true;
-    /** 'Contact/Pressure = at grid nodes': one pressure per grid node
-     * (ContactNodes, NodalContactTerms). */
+    /** 'Contact/Pressure = mortar': one pressure per crossing of a curve
+     * with a grid line, for the weighted gap round it (ContactNodes,
+     * NodalContactTerms). */
     bool pressure_at_nodes = false;
     /** The tilt's penalty as a factor of the mean gap's. */
     double       gamma_tilt     = 0;
@@ -303,7 +304,7 @@ namespace bsmpm
 
     /** The candidate pieces of the present increment. */
     std::vector<ContactPiece> pieces;
-    /** With pressures at the grid nodes: the nodes of the pieces. */
+    /** With the mortar pressures: the nodes of the pieces. */
     ContactNodes contact_nodes;
     /** The contact law and the force and tangent on a piece, with the
      * penalty of the present increment. */

@@ -40,34 +40,35 @@ namespace bsmpm
 
 
   /**
-   * The contact's share of the Newton system with one pressure per grid
-   * node (ContactNodes; doc/contact.md, "Pressures at the grid nodes").
+   * The contact's share of the Newton system with mortar pressures: one
+   * pressure per node, a crossing of a curve with a grid line
+   * (ContactNodes; doc/contact.md, "Mortar pressures").
    *
-   * At the increment du a Gauss point X_q of a node's cells moves to
-   * x_q = X_q + du(X_q) and has the gap g_q to the part of the outline the
-   * node faces, its normal n_q and tangent t_q = (-n_y, n_x). A node a
-   * sums, over the points of all processes,
+   * At the increment du a Gauss point X_q of a node's pieces moves to
+   * x_q = X_q + du(X_q) and has the gap g_q to the part of the outline it
+   * faces, its normal n_q and tangent t_q = (-n_y, n_x). With phi_a the
+   * node's hat function along the curve, node a sums over the points of
+   * all processes
    *
-   *   G_a = sum_q w_q N_a g_q,    c_a = dG_a/du = sum_q w_q N_a n_q . N_i,
+   *   G_a = sum_q w_q phi_a g_q,   c_a = dG_a/du = sum_q w_q phi_a n_q . N_i,
    *
    * and applies the contact law (ContactLaw) to its mean gap G_a / W_a:
-   * p_a = max(0, lambda_a - eps G_a / W_a). Its potential
-   * W_a (p_a^2 - lambda_a^2) / (2 eps) gives the force p_a c_a, so that the
-   * curve carries the continuous pressure p(x) = sum_a p_a N_a(x), and the
-   * stiffness eps / W_a c_a c_a^T (semi-smooth: the node is active or not
-   * at every Newton iteration) plus -sum_q w_q p(x_q) (t . N_i)(t . N_j) /
-   * rho where the outline turns. Friction likewise per node, on the mean
-   * of the trial tractions (t_prev - eps (du - du_body)) . t_q of its
-   * points: tau_a, the force tau_a d_a with d_a = sum_q w_q N_a t_q . N_i.
-   * A body's translation enters as two more DoFs with the shapes -e_x,
-   * -e_y (as in ContactTerms): the bordered terms of a force-controlled
-   * body.
+   * p_a = max(0, -eps G_a / W_a). Its potential W_a p_a^2 / (2 eps) gives
+   * the force p_a c_a, so that the curve carries the continuous pressure
+   * p(x) = sum_a p_a phi_a(x), and the stiffness eps / W_a c_a c_a^T
+   * (semi-smooth: the node is active or not at every Newton iteration)
+   * plus -sum_q w_q p(x_q) (t . N_i)(t . N_j) / rho where the outline
+   * turns. Friction likewise per node, on the mean of the trial
+   * tractions (t_prev - eps (du - du_body)) . t_q of its points: tau_a,
+   * the force tau_a d_a with d_a = sum_q w_q phi_a t_q . N_i. A body's
+   * translation enters as two more DoFs with the shapes -e_x, -e_y (as in
+   * ContactTerms): the bordered terms of a force-controlled body.
    *
-   * c_a has entries on the DoFs of all the cells round vertex a: the
-   * stiffness couples DoFs two cells apart (ContactPattern widens the
-   * tangent's pattern). Every process gathers the nodes' sums of all
-   * processes (summed by node, then by cell: np > 1 gives the serial sums
-   * bit for bit) and adds the rows of the DoFs it owns.
+   * c_a has entries on the DoFs of the two cells on either side of its
+   * crossing: the stiffness couples DoFs two cells apart (ContactPattern
+   * widens the tangent's pattern). Every process gathers the nodes' sums
+   * of all processes (summed by node, then by cell: np > 1 gives the
+   * serial sums bit for bit) and adds the rows of the DoFs it owns.
    */
   class NodalContactTerms
   {
