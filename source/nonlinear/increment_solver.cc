@@ -1,6 +1,7 @@
 #include <bsmpm/nonlinear/increment_solver.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -332,8 +333,17 @@ namespace bsmpm
     // refinement step did not lower it).
     const double enough =
       1e-3 * parts.newton.residual_tolerance() * start.reference;
-    const auto correct = [&]() {
-      return newton_correction(enough, increment, motion, last, solves);
+    const bool check = parts.newton.checks_tangent() && motion == nullptr;
+    LinearAlgebra::distributed::Vector<double> before;
+    double                                     first_product = 0;
+    const auto                                 correct       = [&]() {
+      if (check)
+        before = increment;
+      const auto result =
+        newton_correction(enough, increment, motion, last, solves);
+      if (check)
+        check_tangent(prescribed, before, last.grid, first_product);
+      return result;
     };
     const auto step_back = [&](const double alpha) {
       // From x + a dx to x + (a - alpha) dx.
@@ -615,5 +625,57 @@ namespace bsmpm
         ratios.update_ghost_values();
         parts.constitutive_update->restore_support_stiffness_ratios(ratios);
       }
+  }
+
+
+  void
+  IncrementSolver::check_tangent(
+    const LinearAlgebra::distributed::Vector<double> *prescribed,
+    const LinearAlgebra::distributed::Vector<double> &before,
+    const TrilinosWrappers::MPI::Vector              &correction,
+    double                                           &first_product)
+  {
+    // K dx with the tangent at the increment before the correction, and
+    // -(R(x + e dx) - R(x - e dx)) / (2 e), on the unconstrained DoFs. The
+    // Newton solver assembles the system anew at the corrected increment
+    // next: the two assemblies here leave nothing behind.
+    SystemAssembly               &assembly = parts.assembly;
+    const BackgroundGrid         &grid     = parts.grid;
+    TrilinosWrappers::MPI::Vector dx = correction, product = correction;
+    assembly.constraints().set_zero(dx);
+    assembly.tangent().vmult(product, dx);
+    assembly.constraints().set_zero(product);
+    const double size = product.l2_norm();
+    if (first_product == 0)
+      first_product = size;
+    if (!(size > 0) || size < 1e-3 * first_product)
+      return;
+    // A relative step of 1e-4: the differences' round-off stays near 1e-12
+    // of |K dx|, and a point that yields or unloads between them is rare.
+    constexpr double                             e = 1e-4;
+    std::array<TrilinosWrappers::MPI::Vector, 2> residuals;
+    for (unsigned int s = 0; s < 2; ++s)
+      {
+        LinearAlgebra::distributed::Vector<double> x = before;
+        for (const auto i : grid.locally_owned_dofs())
+          x(i) += (s == 0 ? e : -e) * dx(i);
+        x.update_ghost_values();
+        // An increment that inverts a point has no residual.
+        if (!std::isfinite(assembly.newton_system(*parts.constitutive_update,
+                                                  parts.points,
+                                                  x,
+                                                  prescribed,
+                                                  &elastic_cells)))
+          return;
+        residuals[s] = assembly.residual();
+      }
+    TrilinosWrappers::MPI::Vector difference = residuals[1];
+    difference -= residuals[0];
+    difference /= 2 * e;
+    assembly.constraints().set_zero(difference);
+    difference -= product;
+    largest_tangent_error =
+      std::max(largest_tangent_error, difference.l2_norm() / size);
+    ++n_tangent_checks;
   }
 } // namespace bsmpm

@@ -186,6 +186,7 @@ namespace bsmpm
     // The step's own factor where it finished (the sum of cut increments
     // may differ from it in the last bits).
     record.load_factor = collapse_detector.collapsed() ? lambda : to;
+    record_tangent_check();
   }
 
 
@@ -271,6 +272,19 @@ namespace bsmpm
         ++record.increments;
       }
     record.load_factor = controlled_load_factor;
+    record_tangent_check();
+  }
+
+
+
+  void
+  LoadStepper::record_tangent_check()
+  {
+    if (!parts.newton.checks_tangent())
+      return;
+    const auto [error, checks]         = parts.increment_solver.tangent_check();
+    quantities["newton_tangent_error"] = error;
+    quantities["newton_tangent_checks"] = checks;
   }
 
 

@@ -53,6 +53,16 @@ namespace bsmpm
                       "search keeps Newton from overshooting where points "
                       "unload; keep it on.");
     prm.declare_entry(
+      "Check tangent",
+      "false",
+      Patterns::Bool(),
+      "A check for developers: at every Newton iteration, compares the "
+      "whole tangent times the correction dx with central differences of "
+      "the residual along dx (two more assemblies per iteration); "
+      "summary.json records the largest relative difference as "
+      "newton_tangent_error (doc/newton.md). Not with force-controlled "
+      "rigid bodies.");
+    prm.declare_entry(
       "Predictor",
       "automatic",
       Patterns::Selection("automatic|tangent|last increment"),
@@ -79,6 +89,7 @@ namespace bsmpm
     max_cuts                    = prm.get_integer("Maximum step cuts");
     accepted_stall              = prm.get_double("Stall tolerance");
     line_search                 = prm.get_integer("Line search steps");
+    check_tangent               = prm.get_bool("Check tangent");
     const std::string predictor = prm.get("Predictor");
     start                       = predictor == "tangent" ? Predictor::tangent :
                                   predictor == "last increment" ? Predictor::last_increment :

@@ -151,6 +151,17 @@ namespace bsmpm
       }
     };
 
+    /** 'Nonlinear solver/Check tangent': the largest relative difference
+     * of the tangent times the correction from central differences of the
+     * residual along it, over the run's Newton iterations (those whose
+     * |K dx| is at least 1e-3 of the increment's first: below, round-off
+     * of the differences dominates), and how many were compared. */
+    std::pair<double, unsigned int>
+    tangent_check() const
+    {
+      return {largest_tangent_error, n_tangent_checks};
+    }
+
     /** Collective. */
     Memory
     memory() const;
@@ -159,6 +170,17 @@ namespace bsmpm
     restore(const Memory &memory);
 
   private:
+    /** 'Nonlinear solver/Check tangent' of the correction @p dx taken at
+     * @p before (the tangent and residual there still held). Collective. */
+    void
+    check_tangent(const LinearAlgebra::distributed::Vector<double> *prescribed,
+                  const LinearAlgebra::distributed::Vector<double> &before,
+                  const TrilinosWrappers::MPI::Vector              &dx,
+                  double &first_product);
+
+    double       largest_tangent_error = 0;
+    unsigned int n_tangent_checks      = 0;
+
     /** Calls @p f(dof, k) for every locally owned DoF at the grid's
      * vertices, k = 2 (vertex index on the uniform grid) + component. */
     template <typename Function>

@@ -173,6 +173,11 @@ namespace bsmpm
     void
     begin_contact(const double lambda, const double delta);
 
+    /** 'Nonlinear solver/Check tangent': newton_tangent_error and
+     * newton_tangent_checks of the run so far into the quantities. */
+    void
+    record_tangent_check();
+
     /** Where the log goes (nullptr when quiet). */
     std::ostream *
     log() const

@@ -172,8 +172,16 @@ namespace bsmpm
       return accepted_stall;
     }
 
+    /** 'Nonlinear solver/Check tangent'. */
+    bool
+    checks_tangent() const
+    {
+      return check_tangent;
+    }
+
   private:
     bool         stall_is_convergence = false;
+    bool         check_tangent        = false;
     unsigned int max_iterations       = 20;
     double       tolerance            = 1e-9;
     unsigned int max_cuts             = 6;
