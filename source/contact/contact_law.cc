@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace bsmpm
 {
@@ -45,17 +44,22 @@ namespace bsmpm
     // the traction of the last increment) also with the augmented
     // Lagrangian: augmenting the tangential traction drifted without end
     // along the alternating mode of one pressure per cell (doc/contact.md).
+    // A rough surface holds up to rough_friction_coefficient times the
+    // pressure: without a bound its stick traction t_prev - eps s jumped
+    // from zero to the slip already made where a place started to touch
+    // (and back where it let go), a jump of the residual at which Newton
+    // repeated the same correction (doc/contact.md).
     const double trial = trial_traction(state.previous_tangential, slip);
-    const double limit = friction == Friction::rough ?
-                           std::numeric_limits<double>::infinity() :
-                           mu * traction.pressure;
+    const double coefficient =
+      friction == Friction::rough ? rough_friction_coefficient : mu;
+    const double limit = coefficient * traction.pressure;
     const double sign  = trial > 0 ? 1. : -1.;
     traction.sliding   = std::abs(trial) > limit;
     if (traction.sliding)
       {
         // t_T = mu p sign(t_trial): its derivative is p's.
         traction.tangential              = sign * limit;
-        traction.d_tangential_d_pressure = sign * mu;
+        traction.d_tangential_d_pressure = sign * coefficient;
       }
     else
       {

@@ -112,7 +112,10 @@ namespace bsmpm
                           "smooth: no tangential traction; frictional: "
                           "Coulomb friction with the Friction coefficient "
                           "(sticking while |t_T| <= mu p_N, sliding "
-                          "beyond); rough: no sliding while in contact.");
+                          "beyond); rough: Coulomb friction with mu = 10, "
+                          "no sliding where it presses (a bound that keeps "
+                          "the traction continuous where the body starts or "
+                          "stops touching, doc/contact.md).");
         prm.declare_entry("Friction coefficient",
                           "0.3",
                           Patterns::Double(0.),

@@ -25,7 +25,9 @@ namespace bsmpm
    *   t_T     = t_trial                  if |t_trial| <= mu p (stick),
    *           = mu p sign(t_trial)       otherwise (slip);
    *
-   * a rough surface never slides (mu infinite), a smooth one has t_T = 0.
+   * a rough surface has mu = rough_friction_coefficient (10: it slides
+   * only where it barely touches, and its traction stays continuous as a
+   * place starts or stops touching), a smooth one has t_T = 0.
    * The traction on the curve is p n + t_T t, n the rigid outline's
    * outward normal and t = (-n_y, n_x); s is the slip along t.
    */
@@ -39,12 +41,17 @@ namespace bsmpm
       augmented_lagrangian ///< p = max(0, lambda - eps g), lambda updated
     };
 
+    /** The friction coefficient of a rough surface: no sliding where it
+     * presses, a bound that keeps the traction continuous where a place
+     * starts or stops touching. */
+    static constexpr double rough_friction_coefficient = 10;
+
     /** How the rigid surface resists sliding ('Rigid body N/Friction'). */
     enum class Friction
     {
       smooth,     ///< no tangential traction
       frictional, ///< Coulomb: |t_T| <= mu p_N, sliding beyond
-      rough       ///< no sliding while in contact
+      rough       ///< Coulomb with mu = rough_friction_coefficient
     };
 
     /** What the last increment (and, for the multiplier, the last
