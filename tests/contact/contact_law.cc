@@ -141,11 +141,20 @@ namespace
     const ContactLaw smooth = law(ContactLaw::Friction::smooth);
     {
       LogStream::Prefix prefix("rough");
-      // No slip however large the trial: t_T = t_trial.
-      const ContactLaw::Traction t = rough.evaluate(-0.02, 0.5, state(0, 0.3));
-      print("s = 0.5", t);
+      // Sticks while |t_trial| <= 10 p: t_T = t_prev - eps s.
+      const ContactLaw::Traction t = rough.evaluate(-0.02, 0.15, state(0, 0.3));
+      print("s = 0.15", t);
       deallog << "t_T = t_prev - eps s: "
-              << yes_no(std::abs(t.tangential - (0.3 - eps * 0.5)) < 1e-12)
+              << yes_no(std::abs(t.tangential - (0.3 - eps * 0.15)) < 1e-12)
+              << std::endl;
+      // Beyond, |t_T| = 10 p: the traction vanishes with the pressure, as
+      // a place starts or stops touching, instead of jumping there.
+      const ContactLaw::Traction u = rough.evaluate(-0.02, 0.5, state(0, 0.3));
+      print("s = 0.5", u);
+      deallog << "t_T = -10 p: "
+              << yes_no(std::abs(u.tangential +
+                                 ContactLaw::rough_friction_coefficient *
+                                   u.pressure) < 1e-12)
               << std::endl;
     }
     {
