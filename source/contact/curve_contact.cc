@@ -274,6 +274,25 @@ namespace bsmpm
 
 
 
+  NodalContactTerms::State
+  CurveContact::evaluate_nodes(
+    const BackgroundGrid                             &grid,
+    const Q1CellKernel                               &kernel,
+    const LinearAlgebra::distributed::Vector<double> &increment,
+    const LinearAlgebra::distributed::Vector<double> *prescribed) const
+  {
+    return NodalContactTerms::evaluate(terms,
+                                       contact_nodes,
+                                       bodies,
+                                       body_motion,
+                                       grid,
+                                       kernel,
+                                       increment,
+                                       prescribed);
+  }
+
+
+
   std::vector<ContactPieceState>
   CurveContact::evaluate_all(
     const BackgroundGrid                             &grid,
@@ -321,14 +340,7 @@ namespace bsmpm
     if (pressure_at_nodes)
       {
         const NodalContactTerms::State state =
-          NodalContactTerms::evaluate(terms,
-                                      contact_nodes,
-                                      bodies,
-                                      body_motion,
-                                      grid,
-                                      kernel,
-                                      increment,
-                                      prescribed);
+          evaluate_nodes(grid, kernel, increment, prescribed);
         NodalContactTerms::add_newton_terms(
           state, contact_nodes, grid, constraints, body_motion, tangent, force);
         if (check_tangent)
@@ -497,16 +509,8 @@ namespace bsmpm
   {
     const MPI_Comm communicator = grid.mpi_communicator();
     if (pressure_at_nodes)
-      finish_nodal_increment(curves,
-                             grid,
-                             NodalContactTerms::evaluate(terms,
-                                                         contact_nodes,
-                                                         bodies,
-                                                         body_motion,
-                                                         grid,
-                                                         kernel,
-                                                         increment,
-                                                         prescribed));
+      finish_nodal_increment(
+        curves, grid, evaluate_nodes(grid, kernel, increment, prescribed));
     else
       {
         const std::vector<ContactPieceState> states =

@@ -271,6 +271,16 @@ namespace bsmpm
                            const BackgroundGrid           &grid,
                            const NodalContactTerms::State &state);
 
+    /** With the mortar pressures: what contact does at its nodes at
+     * @p increment (ghosted; @p prescribed as for the points).
+     * Collective. */
+    NodalContactTerms::State
+    evaluate_nodes(
+      const BackgroundGrid                             &grid,
+      const Q1CellKernel                               &kernel,
+      const LinearAlgebra::distributed::Vector<double> &increment,
+      const LinearAlgebra::distributed::Vector<double> *prescribed) const;
+
     std::vector<ContactPieceState>
     evaluate_all(
       const BackgroundGrid                             &grid,
