@@ -22,7 +22,8 @@ namespace bsmpm
   void
   ContactAugmentation::begin_increment(const unsigned int n_bodies)
   {
-    augmentations = 0;
+    augmentations      = 0;
+    unconverged_change = 0;
     // No force yet: the first update always asks for one more solve.
     last_places.assign(
       n_bodies, Tensor<1, 2>({std::numeric_limits<double>::infinity(), 0.}));
@@ -97,7 +98,12 @@ namespace bsmpm
     // Converged: the increment stands with the multipliers it was solved
     // with, so that the forces reported balance the body (an update now
     // would leave them unbalanced by the last change).
-    if (force_change(pieces, states, bodies, motion, communicator) <= tolerance)
+    std::vector<double> forces(2 * bodies.size(), 0.);
+    for (unsigned int p = 0; p < pieces.size(); ++p)
+      if (states[p].active)
+        for (unsigned int d = 0; d < 2; ++d)
+          forces[2 * pieces[p].body + d] += states[p].resultant[d];
+    if (!needs_update(force_change(forces, bodies, motion, communicator)))
       return false;
     if (at_crossings)
       project_at_crossings(pieces, states, communicator);
@@ -195,22 +201,64 @@ namespace bsmpm
 
 
 
+  bool
+  ContactAugmentation::augment_nodes(ContactNodes                   &nodes,
+                                     const NodalContactTerms::State &state,
+                                     const std::vector<RigidBody>   &bodies,
+                                     const RigidBodyMotion          &motion,
+                                     const MPI_Comm communicator)
+  {
+    // The force on the curves at this process's Gauss points: sum w (p n +
+    // tau t), t = (-n_y, n_x).
+    std::vector<double> forces(2 * bodies.size(), 0.);
+    const auto         &points = nodes.points();
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const NodalContactTerms::PointState &here = state.points[q];
+        if (!here.active)
+          continue;
+        const Tensor<1, 2> &n = here.surface.normal;
+        const Tensor<1, 2>  traction =
+          here.pressure * n + here.tangential * Tensor<1, 2>({-n[1], n[0]});
+        for (unsigned int d = 0; d < 2; ++d)
+          forces[2 * points[q].body + d] += points[q].weight * traction[d];
+      }
+    if (!needs_update(force_change(forces, bodies, motion, communicator)))
+      return false;
+    // Every process holds every node's state: the same update everywhere.
+    for (unsigned int a = 0; a < state.nodes.size(); ++a)
+      nodes.set_multiplier(a,
+                           state.nodes[a].traction.active ?
+                             state.nodes[a].traction.pressure :
+                             0.);
+    ++augmentations;
+    return true;
+  }
+
+
+
+  bool
+  ContactAugmentation::needs_update(const double change)
+  {
+    if (change <= tolerance)
+      return false;
+    if (augmentations < max_augmentations)
+      return true;
+    unconverged_change = change;
+    return false;
+  }
+
+
+
   double
-  ContactAugmentation::force_change(
-    const std::vector<ContactPiece>      &pieces,
-    const std::vector<ContactPieceState> &states,
-    const std::vector<RigidBody>         &bodies,
-    const RigidBodyMotion                &motion,
-    const MPI_Comm                        communicator)
+  ContactAugmentation::force_change(std::vector<double>           forces,
+                                    const std::vector<RigidBody> &bodies,
+                                    const RigidBodyMotion        &motion,
+                                    const MPI_Comm                communicator)
   {
     // The force on each body at this solve against the last decides when
     // to stop: it is what the updates are for, and the multipliers
     // converge more slowly in the modes that hardly change it.
-    std::vector<double> forces(2 * bodies.size(), 0.);
-    for (unsigned int p = 0; p < pieces.size(); ++p)
-      if (states[p].active)
-        for (unsigned int d = 0; d < 2; ++d)
-          forces[2 * pieces[p].body + d] += states[p].resultant[d];
     Utilities::MPI::sum(forces, communicator, forces);
     double change = 0;
     for (unsigned int b = 0; b < bodies.size(); ++b)

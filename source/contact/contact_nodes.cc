@@ -15,6 +15,7 @@ namespace bsmpm
   {
     const MPI_Comm     communicator = grid.mpi_communicator();
     const unsigned int n_x          = grid.n_cells(0);
+    cells_per_row                   = n_x;
 
     // W_a per node and cell on this process (a cell's points are all on
     // its owner, summed in the order of the curves), then over all
@@ -183,5 +184,44 @@ namespace bsmpm
         if (nodes[e] == numbers::invalid_unsigned_int)
           shape[e] = 0;
       }
+  }
+
+
+
+  void
+  ContactNodes::initialize_multipliers(const std::vector<RigidBody> &bodies,
+                                       const RigidBodyMotion        &motion,
+                                       const MPI_Comm communicator)
+  {
+    // The normal traction of the last increment, as the friction history
+    // keeps it at the curves' points, projected on the nodes: lambda_a =
+    // sum_q w_q phi_a t_prev . n_q / W_a, summed by node and cell as W_a.
+    std::map<std::array<unsigned int, 2>, double> partial;
+    for (const GaussPoint &point : gauss_points)
+      {
+        const double normal =
+          point.previous *
+          bodies[point.body]
+            .to_feature(point.position, motion.end(point.body), point.feature)
+            .normal;
+        for (unsigned int v = 0; v < 4; ++v)
+          if (point.nodes[v] != numbers::invalid_unsigned_int)
+            partial[{{point.nodes[v],
+                      point.cell[1] * cells_per_row + point.cell[0]}}] +=
+              point.shape[v] * point.weight * normal;
+      }
+    std::vector<double> local;
+    for (const auto &[key, value] : partial)
+      local.insert(local.end(), {double(key[0]), double(key[1]), value});
+    std::map<std::array<unsigned int, 2>, double> all;
+    for (const auto &part : Utilities::MPI::all_gather(communicator, local))
+      for (unsigned int i = 0; i + 3 <= part.size(); i += 3)
+        all[{{static_cast<unsigned int>(part[i]),
+              static_cast<unsigned int>(part[i + 1])}}] = part[i + 2];
+    std::vector<double> sums(all_nodes.size(), 0.);
+    for (const auto &[key, value] : all)
+      sums[key[0]] += value;
+    for (unsigned int a = 0; a < all_nodes.size(); ++a)
+      all_nodes[a].multiplier = std::max(sums[a] / all_nodes[a].weight, 0.);
   }
 } // namespace bsmpm

@@ -7,6 +7,7 @@
 #include <bsmpm/points/material_points.h>
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -39,23 +40,24 @@ namespace bsmpm
       "(doc/contact.md).");
     prm.declare_entry(
       "Pressure",
-      "automatic",
-      Patterns::Selection("automatic|per cell|at grid lines|mortar"),
-      "Where the contact pressure is taken (doc/contact.md). 'per cell': one "
-      "pressure for the mean gap of the touching part of each cell's piece of "
-      "curve. 'at grid lines': the curve's displacement taken where it "
-      "crosses the grid lines and linear between them, a pressure at every "
-      "Gauss point of that gap and multipliers at the crossings; it holds the "
-      "grid nodes under a flat rigid base, which one pressure per cell leaves "
-      "free to move in and out in turn (plastic soil in flow hardly resists "
-      "that), but holds a body's edge in the middle of a cell more weakly. "
+      "at grid lines",
+      Patterns::Selection("at grid lines|per cell|mortar|automatic"),
+      "Where the contact pressure is taken (doc/contact.md). 'at grid lines' "
+      "(the default): the curve's displacement taken where it crosses the "
+      "grid lines and linear between them, a pressure at every Gauss point "
+      "of that gap and multipliers at the crossings; it holds the grid nodes "
+      "under a flat rigid base. 'per cell': one pressure for the mean gap of "
+      "the touching part of each cell's piece of curve; it holds a body's "
+      "edge in the middle of a cell more firmly, but leaves the nodes under a "
+      "flat base free to move in and out in turn, which plastic soil in flow "
+      "hardly resists: with one or three points per cell, or many small load "
+      "steps, a footing's force and contact length can collapse part way. "
       "'mortar': one pressure per crossing of a curve with a grid line, for "
       "the gap weighted by the crossing's hat function along the curve, and "
       "linear between the crossings: a continuous pressure, an exact tangent "
-      "and no touching parts to update (the penalty only, whatever Method "
-      "says); not yet the default (doc/contact.md has where it stands). "
-      "'automatic' (the default): per cell in small strain, at grid lines in "
-      "finite strain.");
+      "and no touching parts to update; it holds a body's edge in the middle "
+      "of a cell weakly. 'automatic': the same as 'at grid lines' (kept for "
+      "older parameter files).");
     prm.declare_entry(
       "Tilt penalty",
       "0",
@@ -79,7 +81,9 @@ namespace bsmpm
       "step. Both hold sticking friction by the penalty. 'automatic' (the "
       "default): the augmented Lagrangian in small strain, the penalty in "
       "finite strain, where the augmentations may not converge as a curve "
-      "slides round a body's corner. Choose 'penalty' for a cheaper run whose "
+      "slides round a body's corner, and with mortar pressures (whose "
+      "augmented pressures hold the edge of a rigid footing better but "
+      "follow a curved outline less well, doc/contact.md). Choose 'penalty' for a cheaper run whose "
       "small penetration does not matter.");
     prm.declare_entry(
       "Augmentation tolerance",
@@ -128,15 +132,10 @@ namespace bsmpm
     prm.enter_subsection("Material");
     const bool finite_strain = prm.get("Kinematics") == "finite strain";
     prm.leave_subsection();
-    augmented = method == "augmented Lagrangian" ||
-                (method == "automatic" && !finite_strain);
     pressure_at_nodes     = where == "mortar";
-    pressure_at_crossings = pressure_at_nodes || where == "at grid lines" ||
-                            (where == "automatic" && finite_strain);
-    // The nodes' pressures are continuous and need no multipliers to hold
-    // a flat base: the penalty alone (doc/contact.md).
-    if (pressure_at_nodes)
-      augmented = false;
+    pressure_at_crossings = where != "per cell";
+    augmented             = method == "augmented Lagrangian" ||
+                (method == "automatic" && !finite_strain && !pressure_at_nodes);
     augmentation.initialize(tolerance,
                             max_augmentations,
                             pressure_at_crossings);
@@ -178,8 +177,14 @@ namespace bsmpm
       if (bodies[b].has_free_motion())
         touch_if_free(b, grid);
     if (pressure_at_nodes)
-      contact_nodes.reinit(pieces, curves, bodies, body_motion, grid);
-    if (augmented)
+      {
+        contact_nodes.reinit(pieces, curves, bodies, body_motion, grid);
+        if (augmented)
+          contact_nodes.initialize_multipliers(bodies,
+                                               body_motion,
+                                               grid.mpi_communicator());
+      }
+    else if (augmented)
       augmentation.initialize_multipliers(pieces, bodies, body_motion);
   }
 
@@ -431,24 +436,45 @@ namespace bsmpm
     const LinearAlgebra::distributed::Vector<double> &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed)
   {
-    if (pressure_at_nodes)
-      return false;
-    // The touching parts first: the multipliers are updated only at a
-    // solve whose parts stand (changing both at once, the parts and the
-    // pressures fed each other).
-    if (touching_updates < max_touching_updates &&
+    if (!pressure_at_nodes && touching_updates < max_touching_updates &&
         update_touching_parts(grid, kernel, increment, prescribed))
       {
+        // The touching parts first: the multipliers are updated only at a
+        // solve whose parts stand (changing both at once, the parts and
+        // the pressures fed each other).
         ++touching_updates;
         return true;
       }
-    return augmented && augmentation.may_augment() &&
-           augmentation.augment(
-             pieces,
-             evaluate_all(grid, kernel, increment, prescribed),
-             bodies,
-             body_motion,
-             grid.mpi_communicator());
+    if (!augmented)
+      return false;
+    const bool again =
+      pressure_at_nodes ?
+        augmentation.augment_nodes(
+          contact_nodes,
+          evaluate_nodes(grid, kernel, increment, prescribed),
+          bodies,
+          body_motion,
+          grid.mpi_communicator()) :
+        augmentation.augment(pieces,
+                             evaluate_all(grid, kernel, increment, prescribed),
+                             bodies,
+                             body_motion,
+                             grid.mpi_communicator());
+    if (augmentation.stopped_unconverged())
+      {
+        // Said in the step's log: the increment stands with pressures that
+        // do not balance the last update (a wrong answer if the change is
+        // large; more updates, smaller load steps or another Pressure may
+        // help).
+        std::ostringstream text;
+        text << "the contact pressures did not converge: the force on a "
+                "rigid body still changed by "
+             << std::setprecision(2) << augmentation.last_force_change()
+             << " after " << augmentation.n_augmentations()
+             << " updates (Contact/Maximum augmentations)";
+        body_motion.note(text.str());
+      }
+    return again;
   }
 
 
@@ -705,6 +731,8 @@ namespace bsmpm
         // relative change of the force, a difference of nearly equal
         // forces whose round-off differs from np = 1 to np = 3.)
         quantities["contact_augmentations"] = augmentation.n_augmentations();
+        quantities["contact_augmentations_unconverged"] =
+          augmentation.stopped_unconverged() ? 1 : 0;
       }
     body_motion.record(bodies, to, quantities);
     if (check_tangent)

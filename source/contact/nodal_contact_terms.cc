@@ -165,6 +165,7 @@ namespace bsmpm
         const double      W   = all[a].weight;
         const ContactLaw  law = terms.law(bodies[all[a].body]);
         ContactLaw::State history;
+        history.multiplier          = all[a].multiplier;
         history.previous_tangential = node.previous / W;
         node.traction = law.evaluate(node.gap / W, node.slip / W, history);
         if (!node.traction.active)

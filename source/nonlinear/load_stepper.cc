@@ -172,11 +172,19 @@ namespace bsmpm
         const bool collapsed = collapse_detector.converged_increment(
           step, lambda, delta, parts.increment.linfty_norm());
         if (parts.contact != nullptr)
-          parts.contact->finish_increment(parts.curves,
-                                          parts.grid,
-                                          assembly.kernel(),
-                                          parts.increment,
-                                          assembly.prescribed_displacement());
+          {
+            parts.contact->finish_increment(parts.curves,
+                                            parts.grid,
+                                            assembly.kernel(),
+                                            parts.increment,
+                                            assembly.prescribed_displacement());
+            // What the contact's solves left open (pressures that did not
+            // converge).
+            const std::string note = parts.contact->motion().take_notes();
+            if (!note.empty())
+              pcout << "       load " << lambda << " + " << delta << ": "
+                    << note << '\n';
+          }
         phases.move(step, delta);
         lambda += delta;
         ++record.increments;

@@ -4,8 +4,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 
+#include <bsmpm/contact/contact_nodes.h>
 #include <bsmpm/contact/contact_pieces.h>
 #include <bsmpm/contact/contact_terms.h>
+#include <bsmpm/contact/nodal_contact_terms.h>
 #include <bsmpm/contact/rigid_body.h>
 #include <bsmpm/contact/rigid_body_motion.h>
 
@@ -49,11 +51,12 @@ namespace bsmpm
 
     /**
      * One Uzawa update of the multipliers of @p pieces at a converged
-     * increment (@p states: what contact does there, one per piece; call
-     * while may_augment()). Returns whether the force on some rigid body
-     * changed by more than the tolerance since the last call: then the
-     * multipliers took the update (counted) and the Newton iterations must
-     * go on; if not, they are left as they were. Collective.
+     * increment (@p states: what contact does there, one per piece).
+     * Returns whether the force on some rigid body changed by more than
+     * the tolerance since the last call and the maximum of updates is not
+     * reached: then the multipliers took the update (counted) and the
+     * Newton iterations must go on; if not, they are left as they were.
+     * Collective.
      */
     bool
     augment(std::vector<ContactPiece>            &pieces,
@@ -62,11 +65,33 @@ namespace bsmpm
             const RigidBodyMotion                &motion,
             const MPI_Comm                        communicator);
 
-    /** Whether augment() may update once more in this increment. */
+    /**
+     * augment() for mortar pressures: each node's multiplier becomes its
+     * pressure in @p state (Uzawa's update lambda_a <- max(0, lambda_a -
+     * eps G_a / W_a) on the node's weighted gap; one pressure per crossing
+     * has no alternating mode to filter). Returns whether the force on
+     * some rigid body changed by more than the tolerance. Collective.
+     */
     bool
-    may_augment() const
+    augment_nodes(ContactNodes                   &nodes,
+                  const NodalContactTerms::State &state,
+                  const std::vector<RigidBody>   &bodies,
+                  const RigidBodyMotion          &motion,
+                  const MPI_Comm                  communicator);
+
+    /** Whether the present increment's updates stopped at 'Contact/Maximum
+     * augmentations' with the force still changing by more than the
+     * tolerance (the pressures not converged), and by how much. */
+    bool
+    stopped_unconverged() const
     {
-      return augmentations < max_augmentations;
+      return unconverged_change > 0;
+    }
+
+    double
+    last_force_change() const
+    {
+      return unconverged_change;
     }
 
     /** The updates of the present increment. */
@@ -86,15 +111,20 @@ namespace bsmpm
                   const MPI_Comm                        communicator,
                   unsigned int                         &offset) const;
 
-    /** The largest relative change of a body's contact force (or, under
-     * a force, of its motion in the increment) since the last call, which
-     * it keeps. Collective. */
+    /** Whether a force change @p change asks for one more update: above
+     * the tolerance and below the maximum of updates (at the maximum it
+     * is kept as unconverged_change). */
+    bool
+    needs_update(const double change);
+
+    /** The largest relative change of a body's contact force @p forces
+     * (2 per body, this process's part) or, under a force, of its motion
+     * in the increment, since the last call, which it keeps. Collective. */
     double
-    force_change(const std::vector<ContactPiece>      &pieces,
-                 const std::vector<ContactPieceState> &states,
-                 const std::vector<RigidBody>         &bodies,
-                 const RigidBodyMotion                &motion,
-                 const MPI_Comm                        communicator);
+    force_change(std::vector<double>           forces,
+                 const std::vector<RigidBody> &bodies,
+                 const RigidBodyMotion        &motion,
+                 const MPI_Comm                communicator);
 
     /** Between crossings: each crossing's multiplier becomes the
      * pressure's lumped projection there, over the pieces on either side
@@ -109,6 +139,9 @@ namespace bsmpm
     bool         at_crossings      = false;
     /** In the present increment. */
     unsigned int augmentations = 0;
+    /** The force change when the updates stopped at the maximum (zero if
+     * they converged). */
+    double unconverged_change = 0;
     /** The forces the last augment() measured, and where it found each
      * body (for those with a force-controlled component). */
     std::vector<Tensor<1, 2>> last_forces;

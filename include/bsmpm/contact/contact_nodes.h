@@ -74,6 +74,8 @@ namespace bsmpm
       double key = 0;
       /** W_a = sum_q N_a(X_q) w_q over the points of all processes. */
       double weight = 0;
+      /** The augmented Lagrangian's multiplier (zero for the penalty). */
+      double multiplier = 0;
     };
 
     /** A curve's point (a knot of its spline) that lies in a candidate
@@ -137,6 +139,21 @@ namespace bsmpm
       return all_cells;
     }
 
+    /** The augmented Lagrangian's start: each node's multiplier the
+     * weighted mean of the normal pressure of the last increment
+     * (ContactHistory) over its points. Collective. */
+    void
+    initialize_multipliers(const std::vector<RigidBody> &bodies,
+                           const RigidBodyMotion        &motion,
+                           const MPI_Comm                communicator);
+
+    /** Node @p a's augmented Lagrangian multiplier becomes @p value. */
+    void
+    set_multiplier(const unsigned int a, const double value)
+    {
+      all_nodes[a].multiplier = value;
+    }
+
   private:
     /** The node of crossing @p key of @p curve with @p body among
      * all_nodes, or invalid_unsigned_int. */
@@ -157,6 +174,8 @@ namespace bsmpm
     std::vector<Node>                        all_nodes;
     std::vector<CurvePoint>                  knots;
     std::vector<std::array<unsigned int, 2>> all_cells;
+    /** The grid's cells in x: a cell's number is i + j cells_per_row. */
+    unsigned int cells_per_row = 1;
   };
 } // namespace bsmpm
 
