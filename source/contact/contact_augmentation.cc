@@ -20,8 +20,10 @@ namespace bsmpm
 
 
   void
-  ContactAugmentation::begin_increment(const unsigned int n_bodies)
+  ContactAugmentation::begin_increment(const unsigned int n_bodies,
+                                       const double       penalty)
   {
+    this->penalty      = penalty;
     augmentations      = 0;
     unconverged_change = 0;
     // No force yet: the first update always asks for one more solve.
@@ -292,9 +294,17 @@ namespace bsmpm
     const std::vector<ContactPieceState> &states,
     const MPI_Comm                        communicator) const
   {
-    // Per crossing of a piece: body, curve, crossing, int phi p ds,
-    // int phi ds. Continuous pressures have no alternating mode: no
-    // filter.
+    // Uzawa's update on the crossing's weighted gap, lambda_k <- max(0,
+    // lambda_k - eps G_k / W_k), G_k = int phi_k g ds where the curve
+    // presses, W_k = int phi_k ds: at its fixed point the weighted gaps
+    // of the pressing crossings vanish. (The lumped projection of the
+    // pressure, lambda_k <- int phi_k p ds / W_k, stops where eps G_k
+    // equals the curvature of lambda along the curve: at a footing's
+    // edge, where the pressure falls to zero within a cell, 2.5 mm of
+    // penetration at h = 0.125 and the elastic footing 2.1 % soft.)
+    // Per crossing of a piece: body, curve, crossing, int phi g ds
+    // (pressing), int phi ds. Continuous pressures have no alternating
+    // mode: no filter.
     std::vector<double> at_crossings;
     for (unsigned int p = 0; p < pieces.size(); ++p)
       for (unsigned int e = 0; e < 2; ++e)
@@ -302,7 +312,7 @@ namespace bsmpm
                             {double(pieces[p].body),
                              double(pieces[p].curve),
                              pieces[p].end_keys[e],
-                             states[p].end_pressures[e],
+                             states[p].end_gaps[e],
                              states[p].end_weights[e]});
     std::map<std::array<double, 3>, std::array<double, 2>> sums;
     for (const auto &part :
@@ -318,8 +328,11 @@ namespace bsmpm
         {
           const std::array<double, 3> crossing = {
             {double(piece.body), double(piece.curve), piece.end_keys[e]}};
-          const auto &sum          = sums[crossing];
-          piece.end_multipliers[e] = sum[1] > 0 ? sum[0] / sum[1] : 0.;
+          const auto &sum = sums[crossing];
+          if (sum[1] > 0)
+            piece.end_multipliers[e] =
+              std::max(piece.end_multipliers[e] - penalty * sum[0] / sum[1],
+                       0.);
         }
   }
 } // namespace bsmpm

@@ -74,7 +74,8 @@ namespace bsmpm
                            touch.pressure,
                            touch.tangential,
                            touch.length,
-                           touch.sliding ? 1. : 0.});
+                           touch.sliding ? 1. : 0.,
+                           touch.sliding_length});
       }
     Utilities::MPI::sum(sums, communicator, sums);
     Utilities::MPI::max(penetration, communicator, penetration);
@@ -118,7 +119,7 @@ namespace bsmpm
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     out << "body,curve,x,y,normal_x,normal_y,gap,pressure,"
-           "tangential_traction,length,sliding\n"
+           "tangential_traction,length,sliding,sliding_length\n"
         << std::setprecision(10);
     for (const auto &part : all)
       for (unsigned int i = 0; i + row_size <= part.size(); i += row_size)

@@ -369,6 +369,7 @@ namespace bsmpm
         for (unsigned int e = 0; e < 2; ++e)
           {
             state.end_pressures[e] += w * phi[e] * p;
+            state.end_gaps[e] += w * phi[e] * surface.gap;
             state.end_tractions[e] += w * phi[e] * t;
           }
       }

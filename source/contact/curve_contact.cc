@@ -166,7 +166,7 @@ namespace bsmpm
     to   = load_to;
     body_motion.begin_increment(bodies, from, to);
     touching_updates = 0;
-    augmentation.begin_increment(bodies.size());
+    augmentation.begin_increment(bodies.size(), penalty);
     history.reinit(curves);
     pieces = pressure_at_crossings ?
                collect_pieces_between_crossings(
@@ -196,20 +196,16 @@ namespace bsmpm
     const MPI_Comm communicator = grid.mpi_communicator();
     const double   h            = grid.min_cell_size();
     const double   touching     = 1e-12 * h;
-    // Where the points that measure a piece's gap meet the body's outline:
-    // the Gauss points, or between crossings the crossings.
+    // Where the Gauss points, which carry the pressure, meet the body's
+    // outline. (Between crossings not the crossings: a crossing that
+    // touches, such as the lowest point of a disc on a grid line, gives
+    // no stiffness while the Gauss points beside it are open.)
     const auto surfaces = [&](const ContactPiece &piece) {
       std::vector<SurfacePoint> points;
-      if (piece.between_crossings)
-        for (unsigned int e = 0; e < 2; ++e)
-          points.push_back(bodies[b].to_feature(piece.ends[e],
-                                                body_motion.end(b),
-                                                piece.end_features[e]));
-      else
-        for (unsigned int q = 0; q < piece.positions.size(); ++q)
-          points.push_back(bodies[b].to_feature(piece.positions[q],
-                                                body_motion.end(b),
-                                                piece.features[q]));
+      for (unsigned int q = 0; q < piece.positions.size(); ++q)
+        points.push_back(bodies[b].to_feature(piece.positions[q],
+                                              body_motion.end(b),
+                                              piece.features[q]));
       return points;
     };
     const auto touches = [&]() {

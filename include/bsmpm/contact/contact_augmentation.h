@@ -39,7 +39,7 @@ namespace bsmpm
 
     /** Starts a load increment: no update yet, no force measured. */
     void
-    begin_increment(const unsigned int n_bodies);
+    begin_increment(const unsigned int n_bodies, const double penalty);
 
     /** Each piece's multiplier at the start of the increment: the
      * pressure of the last increment (its traction kept at the curves'
@@ -137,6 +137,8 @@ namespace bsmpm
     double       tolerance         = 1e-4;
     unsigned int max_augmentations = 30;
     bool         at_crossings      = false;
+    /** The penalty eps of the present increment. */
+    double penalty = 0;
     /** In the present increment. */
     unsigned int augmentations = 0;
     /** The force change when the updates stopped at the maximum (zero if

@@ -100,7 +100,7 @@ namespace bsmpm
     /** The pieces' figures on this process: body, curve, x, y, n_x, n_y,
      * gap, p_N, t_T, length, sliding. */
     std::vector<double>           piece_rows;
-    static constexpr unsigned int row_size = 11;
+    static constexpr unsigned int row_size = 12;
   };
 } // namespace bsmpm
 

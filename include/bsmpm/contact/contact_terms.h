@@ -53,9 +53,11 @@ namespace bsmpm
     FullMatrix<double> stiffness;
     /** Between crossings: at each crossing, the integral of the
      * pressure times the crossing's weight phi along the piece, that of
-     * phi, and the traction there (their lumped projection). */
+     * phi, that of the gap times phi where the piece presses, and the
+     * traction there (their lumped projection). */
     std::array<double, 2>       end_pressures = {{0, 0}};
     std::array<double, 2>       end_weights   = {{0, 0}};
+    std::array<double, 2>       end_gaps      = {{0, 0}};
     std::array<Tensor<1, 2>, 2> end_tractions;
   };
 

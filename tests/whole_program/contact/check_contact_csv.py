@@ -8,7 +8,7 @@ Checks for each step: the file exists (and no ParaView file does); each
 row names body 1 and the block's Curve 1; the rows' tractions sum to the
 force on the rigid body that summary.json records, F = -sum (p_N n + t_T t)
 length with t = (-n_y, n_x), to 1e-9 of it; the rows that slide add up to
-its sliding length and all rows to its contact length.
+its sliding length (sliding_length) and all rows to its contact length.
 
 Usage: check_contact_csv.py --bsmpm B --prm block_on_plane.prm [--np N]
 """
@@ -31,7 +31,8 @@ args = parser.parse_args()
 problems = []
 
 COLUMNS = ["body", "curve", "x", "y", "normal_x", "normal_y", "gap",
-           "pressure", "tangential_traction", "length", "sliding"]
+           "pressure", "tangential_traction", "length", "sliding",
+           "sliding_length"]
 
 with tempfile.TemporaryDirectory() as directory:
     summary = run(args.bsmpm, args.prm, args.np,
@@ -70,7 +71,7 @@ with tempfile.TemporaryDirectory() as directory:
         error = math.hypot(force[0] - recorded[0], force[1] - recorded[1]) / \
             math.hypot(*recorded)
         contact = sum(r["length"] for r in rows)
-        sliding = sum(r["length"] for r in rows if r["sliding"] == 1)
+        sliding = sum(r["sliding_length"] for r in rows)
         print(f"step {step['step']}: {len(rows)} rows, force from the rows "
               f"({force[0]:.10g}, {force[1]:.10g}) N/m, recorded "
               f"({recorded[0]:.10g}, {recorded[1]:.10g}): relative difference "
