@@ -13,6 +13,9 @@ in one step: the force on the rigid footing must lie within --tolerance of
 the imposed footing's (1 % is issue 25's aim at h = 1/32; the difference is
 the footing's edge and, with Contact/Method = penalty, the penetration).
 
+With --expect-unconverged (and a small Contact/Maximum augmentations) the
+elastic run's augmentations must be recorded as stopped unconverged.
+
 --mode separation: the contact footing pressed 0.05 m in, then lifted
 0.1 m: the run must complete, the force on the footing and the contact
 length be zero once it has left the soil, and the soil stay where the
@@ -35,6 +38,10 @@ parser.add_argument("--np", type=int, default=1)
 parser.add_argument("--tolerance", type=float, default=0.03)
 parser.add_argument("--steps", type=int, default=15)
 parser.add_argument("--set", action="append", default=[])
+parser.add_argument("--expect-unconverged", action="store_true",
+                    help="elastic: the augmentations must stop unconverged "
+                    "(summary.json contact_augmentations_unconverged = 1; "
+                    "without it: 0)")
 args = parser.parse_args()
 half_width, prandtl = 1.075, (2 + 3.141592653589793) * 10.0
 problems = []
@@ -79,6 +86,9 @@ elif args.mode == "elastic":
     if abs(f_rigid / f_imposed - 1) > args.tolerance:
         problems.append("the rigid footing's force differs from the "
                         "imposed one's by more than the tolerance")
+    unconverged = q.get("contact_augmentations_unconverged")
+    if unconverged is not None and unconverged != int(args.expect_unconverged):
+        problems.append(f"contact_augmentations_unconverged is {unconverged}")
 else:
     summary = footing("strip-footing-rigid.prm",
                       ["Rigid body 1/Displacement=0; if(t < 0.5, -0.1*t, "
