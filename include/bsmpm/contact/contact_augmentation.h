@@ -80,8 +80,8 @@ namespace bsmpm
                   const MPI_Comm                  communicator);
 
     /** Whether the present increment's updates stopped at 'Contact/Maximum
-     * augmentations' with the force still changing by more than the
-     * tolerance (the pressures not converged), and by how much. */
+     * augmentations' with the force still changing by more than ten times
+     * the tolerance (the pressures not converged), and by how much. */
     bool
     stopped_unconverged() const
     {
@@ -113,7 +113,7 @@ namespace bsmpm
 
     /** Whether a force change @p change asks for one more update: above
      * the tolerance and below the maximum of updates (at the maximum it
-     * is kept as unconverged_change). */
+     * is kept as unconverged_change if above ten times the tolerance). */
     bool
     needs_update(const double change);
 
