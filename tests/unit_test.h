@@ -2,10 +2,9 @@
 // program (doc/architecture.md, "Tests"): each tests/<subsystem>/<name>.cc
 // registers its test as "<subsystem>/<name>" with BSMPM_UNIT_TEST where a
 // test of deal.II's kind has its main(), and tests/unit_tests.cc runs the
-// test named on its command line. One executable compiles in parallel with
-// the library and links once; deal.II's test macros built and linked an
-// executable per test while the test suite ran (30-45 s of a ctest slot
-// each).
+// test named on its command line. It is linked once; deal.II's test
+// macros built and linked an executable per test while the test suite ran
+// (tests/CMakeLists.txt).
 #ifndef bsmpm_unit_test_h
 #define bsmpm_unit_test_h
 
