@@ -15,7 +15,8 @@
 
 using namespace dealii;
 
-std::ofstream deallogfile;
+// inline: the unit tests are linked into one executable (unit_test.h).
+inline std::ofstream deallogfile;
 
 inline void
 initlog(const unsigned int precision = 8)

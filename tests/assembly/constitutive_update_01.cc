@@ -31,6 +31,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -424,8 +426,7 @@ namespace
 
 
 
-int
-main()
+BSMPM_UNIT_TEST("assembly/constitutive_update_01")
 {
   initlog();
   deallog << std::setprecision(6);

@@ -2,11 +2,11 @@
 // files it includes (the registry, the implicit boundary method's band
 // integrals).
 
+#include "../unit_test.h"
 #include "implicit_boundary_01.h"
 #include "support_method_registry_01.h"
 
-int
-main()
+BSMPM_UNIT_TEST("boundary/support_methods")
 {
   initlog();
   deallog << std::setprecision(8);

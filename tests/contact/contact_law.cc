@@ -17,6 +17,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -306,8 +308,7 @@ namespace
 
 
 
-int
-main()
+BSMPM_UNIT_TEST("contact/contact_law")
 {
   initlog();
   test_normal();

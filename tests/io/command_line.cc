@@ -40,6 +40,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -546,8 +548,7 @@ namespace
 
 
 
-int
-main()
+BSMPM_UNIT_TEST("io/command_line")
 {
   initlog();
   check_options();

@@ -42,6 +42,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -207,8 +209,7 @@ namespace
 
 
 
-int
-main(int argc, char **argv)
+BSMPM_UNIT_TEST("linear_algebra/direct_solver")
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)

@@ -44,6 +44,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -163,8 +165,7 @@ namespace
 
 
 
-int
-main(int argc, char **argv)
+BSMPM_UNIT_TEST("linear_algebra/multigrid_01")
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();

@@ -2,12 +2,12 @@
 // parts, one per model, are the numbered files it includes; the checks
 // they share are in constitutive_checks.h.
 
+#include "../unit_test.h"
 #include "drucker_prager_01.h"
 #include "elastic_01.h"
 #include "von_mises_01.h"
 
-int
-main()
+BSMPM_UNIT_TEST("materials/constitutive_models")
 {
   initlog();
   deallog << std::setprecision(8);

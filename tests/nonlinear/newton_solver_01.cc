@@ -33,6 +33,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -323,8 +325,7 @@ namespace
 
 
 
-int
-main()
+BSMPM_UNIT_TEST("nonlinear/newton_solver_01")
 {
   initlog();
   test_cubic();

@@ -30,10 +30,11 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
-int
-main(int argc, char **argv)
+BSMPM_UNIT_TEST("points/point_sorting")
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm                   comm = MPI_COMM_WORLD;

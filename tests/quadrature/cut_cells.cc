@@ -27,6 +27,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -615,8 +617,7 @@ namespace
 
 
 
-int
-main()
+BSMPM_UNIT_TEST("quadrature/cut_cells")
 {
   initlog();
   check_polygons();

@@ -26,6 +26,8 @@ using namespace dealii;
 
 #include "../tests.h"
 
+#include "../unit_test.h"
+
 using namespace bsmpm;
 
 namespace
@@ -475,8 +477,7 @@ namespace
 
 
 
-int
-main()
+BSMPM_UNIT_TEST("verification/exact_solution")
 {
   initlog();
   check_column();
