@@ -210,21 +210,14 @@ namespace bsmpm
                                      const RigidBodyMotion          &motion,
                                      const MPI_Comm communicator)
   {
-    // The force on the curves at this process's Gauss points: sum w (p n +
-    // tau t), t = (-n_y, n_x).
+    // The force on the curves at this process's Gauss points.
     std::vector<double> forces(2 * bodies.size(), 0.);
     const auto         &points = nodes.points();
     for (unsigned int q = 0; q < points.size(); ++q)
-      {
-        const NodalContactTerms::PointState &here = state.points[q];
-        if (!here.active)
-          continue;
-        const Tensor<1, 2> &n = here.surface.normal;
-        const Tensor<1, 2>  traction =
-          here.pressure * n + here.tangential * Tensor<1, 2>({-n[1], n[0]});
+      if (state.points[q].active)
         for (unsigned int d = 0; d < 2; ++d)
-          forces[2 * points[q].body + d] += points[q].weight * traction[d];
-      }
+          forces[2 * points[q].body + d] +=
+            points[q].weight * state.points[q].traction()[d];
     if (!needs_update(force_change(forces, bodies, motion, communicator)))
       return false;
     // Every process holds every node's state: the same update everywhere.

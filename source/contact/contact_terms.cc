@@ -368,7 +368,6 @@ namespace bsmpm
         state.resultant += w * t;
         for (unsigned int e = 0; e < 2; ++e)
           {
-            state.end_pressures[e] += w * phi[e] * p;
             state.end_gaps[e] += w * phi[e] * surface.gap;
             state.end_tractions[e] += w * phi[e] * t;
           }

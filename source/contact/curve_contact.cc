@@ -575,9 +575,7 @@ namespace bsmpm
         touch.contact_length = points[q].weight;
         touch.sliding        = here.sliding;
         touch.sliding_length = here.sliding ? points[q].weight : 0.;
-        touch.resultant =
-          points[q].weight *
-          (here.pressure * n + here.tangential * Tensor<1, 2>({-n[1], n[0]}));
+        touch.resultant      = points[q].weight * here.traction();
         touches.push_back(touch);
       }
     // The largest mean penetration of a node (the same on all processes).

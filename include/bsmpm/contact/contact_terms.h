@@ -52,12 +52,12 @@ namespace bsmpm
     Vector<double>     force;
     FullMatrix<double> stiffness;
     /** Between crossings: at each crossing, the integral of the
-     * pressure times the crossing's weight phi along the piece, that of
-     * phi, that of the gap times phi where the piece presses, and the
-     * traction there (their lumped projection). */
-    std::array<double, 2>       end_pressures = {{0, 0}};
-    std::array<double, 2>       end_weights   = {{0, 0}};
-    std::array<double, 2>       end_gaps      = {{0, 0}};
+     * crossing's weight phi along the piece, that of the gap times phi
+     * where the piece presses (the augmented Lagrangian's update), and the
+     * traction there (its lumped projection, the next increment's
+     * history). */
+    std::array<double, 2>       end_weights = {{0, 0}};
+    std::array<double, 2>       end_gaps    = {{0, 0}};
     std::array<Tensor<1, 2>, 2> end_tractions;
   };
 

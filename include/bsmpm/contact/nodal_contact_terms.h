@@ -92,6 +92,14 @@ namespace bsmpm
       /** Whether one of its nodes takes part (or slides). */
       bool active  = false;
       bool sliding = false;
+
+      /** The traction on the curve, p n + tau t with t = (-n_y, n_x). */
+      Tensor<1, 2>
+      traction() const
+      {
+        const Tensor<1, 2> &n = surface.normal;
+        return pressure * n + tangential * Tensor<1, 2>({-n[1], n[0]});
+      }
     };
 
     /** What contact does at a node (the same on every process). */
