@@ -48,14 +48,18 @@ namespace bsmpm
                       "finite strain and contact want enough steps for each "
                       "increment to converge and to follow the load path (a "
                       "step that does not converge is halved, Nonlinear "
-                      "solver/Maximum step cuts). At most 100000.");
+                      "solver/Maximum step cuts). At most 100000. A scene "
+                      "in stages gives each stage its own (Stages).");
     prm.declare_entry("Gravity",
                       "0, 0",
                       ParameterTools::point_pattern(),
                       "Gravitational acceleration in m/s^2; with the "
                       "material density it gives the body force, applied in "
-                      "load steps like every other load.");
+                      "load steps like every other load (in a scene in "
+                      "stages, by each stage's Gravity factor; with an "
+                      "initial stress, from the start).");
     prm.leave_subsection();
+    LoadStages::declare_parameters(prm);
 
     SupportReaction::declare_parameters(prm);
     Probe::declare_parameters(prm);
@@ -89,9 +93,9 @@ namespace bsmpm
   {
     scene_name = prm.get("Scene name");
     prm.enter_subsection("Loading");
-    n_load_steps = prm.get_integer("Load steps");
-    gravity      = ParameterTools::get_point(prm, "Gravity");
+    gravity = ParameterTools::get_point(prm, "Gravity");
     prm.leave_subsection();
+    stages.parse_parameters(prm, false);
 
     reactions.parse_parameters(prm);
     probe.parse_parameters(prm);
@@ -191,7 +195,7 @@ namespace bsmpm
     run_summary.n_tracking_points =
       points.particle_handler().n_global_particles() -
       points.n_global_material_points();
-    run_summary.load_steps = n_load_steps;
+    run_summary.load_steps = stages.n_load_steps();
     load_stepper->initialize(!constitutive_model->is_linear(),
                              checkpoint.resuming());
   }
@@ -246,6 +250,7 @@ namespace bsmpm
                          neumann_loads,
                          material,
                          gravity,
+                         stages,
                          *assembly,
                          *increment_solver,
                          linear_solver,
@@ -405,6 +410,31 @@ namespace bsmpm
 
 
   void
+  Scene::begin_stage(const unsigned int k)
+  {
+    if (k > 1)
+      load_stepper->begin_stage(k);
+    if (!stages.staged())
+      return;
+    const LoadLevel before = stages.level(k - 1.);
+    const LoadLevel after  = stages.level(k);
+    pcout << "\n"
+          << stages.stage_name(k) << " (stage " << k << " of "
+          << stages.n_stages() << "): " << stages.stage(k).load_steps
+          << " load steps, gravity x" << before.gravity << " -> x"
+          << after.gravity << ", loads x" << before.loads << " -> x"
+          << after.loads;
+    if (stages.stage(k).reset_displacements)
+      {
+        points.reset_displacements();
+        pcout << ", displacements from zero";
+      }
+    pcout << '\n';
+  }
+
+
+
+  void
   Scene::evaluate_errors()
   {
     TimerOutput::Scope t(timer, "errors");
@@ -448,18 +478,22 @@ namespace bsmpm
     unsigned int step = first_step;
     try
       {
+        const unsigned int n_load_steps = stages.n_load_steps();
         for (; step <= n_load_steps; ++step)
           {
-            const double     load_factor = double(step) / n_load_steps;
+            const LoadStages::Step path = stages.step(step);
+            if (path.first_of_stage)
+              begin_stage(path.stage);
             RunSummary::Step record;
             record.number = step;
+            record.stage  = path.stage;
             if (displacement_control.enabled())
               load_stepper->advance_under_displacement_control(step, record);
             else
-              load_stepper->advance(step,
-                                    double(step - 1) / n_load_steps,
-                                    load_factor,
-                                    record);
+              load_stepper->advance(step, path.from, path.to, record);
+            // The step table and summary.json give the stage's own factor.
+            const double tau     = record.load_factor;
+            record.load_factor   = LoadStages::fraction(tau, path.stage);
             const bool collapsed = collapse_detector.collapsed();
             // A step that collapsed before any increment converged leaves
             // the body as the step before: nothing to record.
@@ -471,17 +505,25 @@ namespace bsmpm
                 step_output.write_contact_tractions(step);
                 if (output.writes_step(step, n_load_steps) ||
                     (collapsed && output.enabled()))
-                  write_output(step, record.load_factor);
+                  write_output(step, tau);
                 if (checkpoint.writes_step(step, n_load_steps))
                   write_checkpoint(step);
               }
             if (collapsed)
               {
-                collapse_detector.record(run_summary.quantities);
+                collapse_detector.record(run_summary.quantities,
+                                         path.stage - 1.);
+                if (stages.staged())
+                  run_summary.quantities["limit_load_stage"] = path.stage;
                 run_summary.limit_load_reason = collapse_detector.reason();
-                pcout << "\nLimit load reached: limit load factor "
-                      << collapse_detector.limit_load_factor() << " ("
-                      << collapse_detector.reason()
+                pcout << "\nLimit load reached"
+                      << (stages.staged() ?
+                            " in " + stages.stage_name(path.stage) :
+                            std::string())
+                      << ": limit load factor "
+                      << LoadStages::fraction(
+                           collapse_detector.limit_load_factor(), path.stage)
+                      << " (" << collapse_detector.reason()
                       << "). The run stops here; summary.json gives "
                          "limit_load_factor and its bracket.\n";
                 break;
@@ -539,7 +581,7 @@ namespace bsmpm
       run_summary.quantities["yielded_points"] = record.n_yielded;
     contact.record(run_summary.quantities);
     boundary_curves.record_point_changes(run_summary.quantities);
-    collapse_detector.record(run_summary.quantities);
+    collapse_detector.record(run_summary.quantities, record.stage - 1.);
   }
 
 

@@ -221,7 +221,7 @@ namespace bsmpm
 
 
   void
-  SystemAssembly::assemble(const double                    load_factor,
+  SystemAssembly::assemble(const LoadLevel                &level,
                            const double                    increment_factor,
                            const std::vector<CellMoments> &moments,
                            const std::vector<double>      &quality)
@@ -254,7 +254,7 @@ namespace bsmpm
       scatter.reinit(system_matrix, grid.triangulation().n_active_cells());
 
     const Tensor<1, 2> body_force =
-      load_factor * parts.material.density() * parts.gravity;
+      level.gravity * parts.material.density() * parts.gravity;
     const bool has_body_force = body_force.norm() > 0;
 
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
@@ -338,7 +338,7 @@ namespace bsmpm
                                      grid,
                                      kernel,
                                      parts.exact_solution,
-                                     load_factor,
+                                     level.loads,
                                      constraints,
                                      system_rhs,
                                      parts.finite_strain ? &system_matrix :

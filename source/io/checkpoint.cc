@@ -23,9 +23,10 @@ namespace boost
     void
     serialize(Archive &ar, bsmpm::RunSummary::Step &s, const unsigned int)
     {
-      ar &s.number &s.load_factor &s.solver &s.iterations &s.refinement_steps &s
-        .relative_residual &s.n_active_cells &s.increments &s.n_yielded &s
-        .newton_residuals &s.newton_corrections &s.quantities;
+      ar &s.number &s.stage &s.load_factor &s.solver &s.iterations &s
+        .refinement_steps &s.relative_residual &s.n_active_cells &s
+        .increments &s.n_yielded &s.newton_residuals &s.newton_corrections &s
+        .quantities;
     }
 
     template <class Archive>

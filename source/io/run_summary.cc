@@ -89,6 +89,7 @@ namespace bsmpm
       {
         const Step &s = steps[i];
         out << (i == 0 ? "\n" : ",\n") << "    {\"step\": " << s.number
+            << ", \"stage\": " << s.stage
             << ", \"load_factor\": " << json_number(s.load_factor)
             << ", \"solver\": " << json_string(s.solver)
             << ", \"iterations\": " << s.iterations

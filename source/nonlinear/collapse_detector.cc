@@ -50,11 +50,13 @@ namespace bsmpm
 
 
   void
-  CollapseDetector::initialize(const bool nonlinear,
-                               const bool prescribes_displacement)
+  CollapseDetector::initialize(const bool         nonlinear,
+                               const bool         prescribes_displacement,
+                               const std::string &stage_mode)
   {
+    const std::string &m = stage_mode == "default" ? mode : stage_mode;
     is_active =
-      mode == "on" || (mode == "auto" && nonlinear && !prescribes_displacement);
+      m == "on" || (m == "auto" && nonlinear && !prescribes_displacement);
     reference     = 0;
     last_ratio    = 0;
     lower         = 0;
@@ -121,16 +123,17 @@ namespace bsmpm
 
 
   void
-  CollapseDetector::record(std::map<std::string, double> &quantities) const
+  CollapseDetector::record(std::map<std::string, double> &quantities,
+                           const double                   stage_start) const
   {
     if (!is_active)
       return;
     quantities["flexibility_ratio"] = last_ratio;
     if (has_collapsed)
       {
-        quantities["limit_load_factor"] = lower;
-        quantities["limit_load_lower"]  = lower;
-        quantities["limit_load_upper"]  = upper;
+        quantities["limit_load_factor"] = lower - stage_start;
+        quantities["limit_load_lower"]  = lower - stage_start;
+        quantities["limit_load_upper"]  = upper - stage_start;
       }
   }
 } // namespace bsmpm

@@ -59,12 +59,14 @@ namespace bsmpm
                       parts.constitutive_update->kinematics() ==
                         ConstitutiveUpdate::Kinematics::small_strain &&
                       !parts.curves.prescribe_displacement() &&
-                      parts.contact == nullptr && !resuming,
+                      parts.contact == nullptr && !resuming &&
+                      parts.stages.proportional(),
                     ExcMessage(
                       "Loading/Control = displacement needs a nonlinear "
                       "material in small strain, no prescribed "
                       "displacement on the boundary curves, no rigid "
-                      "bodies, and no resumed "
+                      "bodies, one stage without an initial stress (loads "
+                      "that grow together from zero) and no resumed "
                       "checkpoint (the load factor is not in it)."));
         parts.displacement_control.locate(parts.grid);
         pcout << "displacement control at the vertex "
@@ -79,11 +81,32 @@ namespace bsmpm
       // Under a rigid body that the load factor moves, the run follows the
       // mechanism (as under a prescribed displacement); under one held or
       // force-controlled, the load factor scales loads.
-      parts.collapse_detector.initialize(
-        nonlinear && may_yield,
-        parts.curves.prescribe_displacement() ||
-          (parts.contact != nullptr &&
-           parts.contact->moves_bodies_with_load()));
+      begin_stage(1, may_yield);
+  }
+
+
+
+  void
+  LoadStepper::begin_stage(const unsigned int k, const bool may_yield)
+  {
+    stage_may_yield = may_yield;
+    // The predictions from the last increment belong to another load.
+    if (k > 1)
+      parts.increment_solver.forget_last_increment();
+    if (parts.displacement_control.enabled())
+      return;
+    // Under a prescribed displacement, or a rigid body that the load
+    // factor moves, the stage follows the mechanism; a stage that leaves
+    // them where they are (the ground's weight) has loads that can
+    // collapse.
+    const bool moves_supports =
+      parts.stages.level(k - 1.).loads != parts.stages.level(k).loads &&
+      (parts.curves.prescribe_displacement() ||
+       (parts.contact != nullptr && parts.contact->moves_bodies_with_load()));
+    parts.collapse_detector.initialize(parts.constitutive_update != nullptr &&
+                                         may_yield,
+                                       moves_supports,
+                                       parts.stages.stage(k).detect_collapse);
   }
 
 
@@ -130,11 +153,20 @@ namespace bsmpm
       {
         delta                                   = std::min(delta, to - lambda);
         const std::vector<CellMoments> &moments = prepare_increment(cuts);
+        const LoadLevel end = parts.stages.level(lambda + delta);
+        // The prescribed displacements' increment (none in a stage that
+        // keeps them, such as the ground's weight alone).
+        const double load_increment =
+          end.loads - parts.stages.level(lambda).loads;
         if (assembly.fits_prescribed_displacement())
-          // The fit is linear in u^a: the misfit of u^a itself.
-          quantities["boundary_fit_error"] =
-            assembly.fit_prescribed_displacement(delta) / delta;
-        assembly.assemble(lambda + delta, delta, moments, cell_quality);
+          {
+            const double misfit =
+              assembly.fit_prescribed_displacement(load_increment);
+            // The fit is linear in u^a: the misfit of u^a itself.
+            if (load_increment != 0)
+              quantities["boundary_fit_error"] = misfit / load_increment;
+          }
+        assembly.assemble(end, load_increment, moments, cell_quality);
         if (parts.linear_solver.estimates_condition() &&
             assembly.rhs().l2_norm() > 0)
           {
@@ -205,8 +237,8 @@ namespace bsmpm
     parts.contact->begin_increment(parts.curves,
                                    parts.grid,
                                    parts.material.penalty_modulus(),
-                                   lambda,
-                                   lambda + delta);
+                                   parts.stages.level(lambda).loads,
+                                   parts.stages.level(lambda + delta).loads);
     // A body under a force moved to touch before the iterations.
     const std::string note = parts.contact->motion().take_notes();
     if (!note.empty())
@@ -237,10 +269,11 @@ namespace bsmpm
         if (parts.curves.has_loads())
           unit_traction_resultant =
             parts.neumann_loads.resultant(parts.grid.mpi_communicator());
-        assembly.assemble(controlled_load_factor, 0., moments, cell_quality);
+        const LoadLevel level = parts.stages.level(controlled_load_factor);
+        assembly.assemble(level, 0., moments, cell_quality);
         assembly.check_loads_finite(step);
         parts.constitutive_update->set_body_force(
-          controlled_load_factor * parts.material.density() * parts.gravity);
+          level.gravity * parts.material.density() * parts.gravity);
 
         IncrementSolver::LinearSolves solves;
         double                        load_increment = 0;
@@ -308,7 +341,8 @@ namespace bsmpm
     const NewtonSolver     &newton            = parts.newton;
     parts.assembly.check_loads_finite(step);
     parts.constitutive_update->set_body_force(
-      (lambda + delta) * parts.material.density() * parts.gravity);
+      parts.stages.level(lambda + delta).gravity * parts.material.density() *
+      parts.gravity);
     IncrementSolver::LinearSolves solves;
     NewtonSolver::Result          result;
     // The last cut that may still cycle (doc/newton.md, "Stalled
@@ -423,7 +457,8 @@ namespace bsmpm
     // must rest on the rigid bodies under its own loads.
     const bool supported =
       parts.grid.has_face_conditions() || parts.curves.has_supports();
-    const Tensor<1, 2> load = load_factor * parts.material.density() *
+    const Tensor<1, 2> load = parts.stages.level(load_factor).gravity *
+                                parts.material.density() *
                                 parts.points.global_volume() * parts.gravity +
                               traction_resultant();
     return parts.contact->friction_hint(parts.grid,
@@ -438,7 +473,8 @@ namespace bsmpm
     // Under displacement control the last assemble() had the load factor
     // of the step's start.
     return parts.displacement_control.enabled() ?
-             controlled_load_factor * unit_traction_resultant :
+             parts.stages.level(controlled_load_factor).loads *
+               unit_traction_resultant :
              parts.neumann_loads.resultant(parts.grid.mpi_communicator());
   }
 } // namespace bsmpm

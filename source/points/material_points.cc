@@ -252,6 +252,19 @@ namespace bsmpm
 
 
 
+  void
+  MaterialPoints::reset_displacements()
+  {
+    for (auto &particle : particles)
+      {
+        const ArrayView<double> properties     = particle.get_properties();
+        properties[Property::displacement]     = 0;
+        properties[Property::displacement + 1] = 0;
+      }
+  }
+
+
+
   bool
   MaterialPoints::holds_material(
     const DoFHandler<2>::active_cell_iterator &cell) const

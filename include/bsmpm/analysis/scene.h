@@ -28,6 +28,7 @@
 #include <bsmpm/nonlinear/collapse_detector.h>
 #include <bsmpm/nonlinear/displacement_control.h>
 #include <bsmpm/nonlinear/increment_solver.h>
+#include <bsmpm/nonlinear/load_stages.h>
 #include <bsmpm/nonlinear/load_stepper.h>
 #include <bsmpm/nonlinear/newton_solver.h>
 #include <bsmpm/points/material_point_layout.h>
@@ -139,6 +140,11 @@ namespace bsmpm
     record_quantities(const RunSummary::Step &record);
     void
     write_output(const unsigned int step, const double load_factor);
+
+    /** Before the first step of stage @p k: its line in the log, and what
+     * the stage restarts (LoadStages::Stage). */
+    void
+    begin_stage(const unsigned int k);
     void
     evaluate_errors();
     void
@@ -149,8 +155,8 @@ namespace bsmpm
     mutable TimerOutput timer;
     Timer               total_timer;
 
-    std::string  scene_name;
-    unsigned int n_load_steps = 1;
+    std::string scene_name;
+    LoadStages  stages;
     /** The constitutive model's strength is divided by this. */
     double                             strength_factor = 1;
     CollapseDetector                   collapse_detector;

@@ -18,6 +18,7 @@
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
+#include <bsmpm/nonlinear/load_stages.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/verification/exact_solution.h>
 
@@ -138,14 +139,15 @@ namespace bsmpm
     }
 
     /**
-     * Assembles K and r for load factor @p load_factor, the load increment
-     * of the step being @p increment_factor (prescribed displacements are
+     * Assembles K and r for the load multipliers @p level (LoadStages), the
+     * increment of the load multiplier being @p increment_factor
+     * (prescribed displacements are
      * applied incrementally; fitted ones as of the last
      * fit_prescribed_displacement()). @p quality: support quality of every
      * locally owned cell (for the ghost penalty).
      */
     void
-    assemble(const double                    load_factor,
+    assemble(const LoadLevel                &level,
              const double                    increment_factor,
              const std::vector<CellMoments> &moments,
              const std::vector<double>      &quality);

@@ -27,6 +27,8 @@ namespace bsmpm
     struct Step : LoadStepRecord
     {
       unsigned int number = 0;
+      /** Its stage (LoadStages), from 1; load_factor is the stage's own. */
+      unsigned int stage = 1;
       /** The scene's quantities after this step (support reactions, the
        * probe, ...): load-displacement curves. */
       std::map<std::string, double> quantities;

@@ -52,9 +52,14 @@ namespace bsmpm
      * @p nonlinear material when no curve @p prescribes_displacement (then
      * the load factor scales the loads, and a collapse is a limit load;
      * under a prescribed displacement the run follows the mechanism).
+     * A stage's @p stage_mode "on" or "off" overrides the scene's; its
+     * "default" keeps it. Every call starts a new reference (the first
+     * increment after it).
      */
     void
-    initialize(const bool nonlinear, const bool prescribes_displacement);
+    initialize(const bool         nonlinear,
+               const bool         prescribes_displacement,
+               const std::string &stage_mode = "default");
 
     bool
     active() const
@@ -105,10 +110,13 @@ namespace bsmpm
     /**
      * The figures of the detector as quantities: 'flexibility_ratio' of
      * the last increment, and after a collapse 'limit_load_factor',
-     * 'limit_load_lower' and 'limit_load_upper' (the bracket).
+     * 'limit_load_lower' and 'limit_load_upper' (the bracket), as
+     * fractions of the stage that starts at load path parameter
+     * @p stage_start (LoadStages).
      */
     void
-    record(std::map<std::string, double> &quantities) const;
+    record(std::map<std::string, double> &quantities,
+           const double                   stage_start = 0) const;
 
     /** The flexibility ratio beyond which collapse is declared. */
     double

@@ -129,6 +129,14 @@ namespace bsmpm
     accept(const LinearAlgebra::distributed::Vector<double> &increment,
            const double                                      delta);
 
+    /** The next Newton iterations start from zero (a new stage, whose
+     * loads change differently). */
+    void
+    forget_last_increment()
+    {
+      previous_delta = 0;
+    }
+
     /** What the next load step starts from (the last converged increment,
      * at the grid's vertices so that it does not depend on the processes,
      * its load increment, the residual's scale, and how much of its

@@ -18,6 +18,7 @@
 #include <bsmpm/nonlinear/collapse_detector.h>
 #include <bsmpm/nonlinear/displacement_control.h>
 #include <bsmpm/nonlinear/increment_solver.h>
+#include <bsmpm/nonlinear/load_stages.h>
 #include <bsmpm/nonlinear/load_step_record.h>
 #include <bsmpm/nonlinear/newton_solver.h>
 #include <bsmpm/points/material_points.h>
@@ -60,7 +61,9 @@ namespace bsmpm
       const NeumannLoads          &neumann_loads;
       const LinearElasticMaterial &material;
       /** Gravitational acceleration (the body force is density times it). */
-      Tensor<1, 2>         gravity;
+      Tensor<1, 2> gravity;
+      /** The multipliers of the loads along the load path. */
+      const LoadStages    &stages;
       SystemAssembly      &assembly;
       IncrementSolver     &increment_solver;
       const LinearSolver  &linear_solver;
@@ -101,6 +104,15 @@ namespace bsmpm
      */
     void
     initialize(const bool may_yield, const bool resuming);
+
+    /** Before the first step of stage @p k (LoadStages): the collapse
+     * detector measures the stage against its own first increment, and the
+     * Newton solver forgets the last stage's increments. */
+    void
+    begin_stage(const unsigned int k)
+    {
+      begin_stage(k, stage_may_yield);
+    }
 
     /**
      * Takes the load from factor @p from to @p to: one increment, or more
@@ -145,6 +157,9 @@ namespace bsmpm
     }
 
   private:
+    void
+    begin_stage(const unsigned int k, const bool may_yield);
+
     /** The system's constraints and the cells' support qualities for the
      * points as they are, after @p cuts cuts of the increment. */
     const std::vector<CellMoments> &
@@ -194,7 +209,9 @@ namespace bsmpm
     std::vector<double> cell_quality;
     /** Under displacement control: the load factor reached, the loads of
      * load factor 1 and their traction resultant. */
-    double                        controlled_load_factor = 0;
+    double controlled_load_factor = 0;
+    /** Whether the material may yield (initialize()). */
+    bool                          stage_may_yield = false;
     TrilinosWrappers::MPI::Vector reference_loads;
     Tensor<1, 2>                  unit_traction_resultant;
   };

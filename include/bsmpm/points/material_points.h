@@ -215,6 +215,12 @@ namespace bsmpm
     scale_volumes(const std::vector<types::particle_index> &ids,
                   const double                              factor);
 
+    /** Sets the total displacements of all points to zero (a stage that
+     * measures its own displacements); positions, strains, stresses and
+     * state stay. */
+    void
+    reset_displacements();
+
     /**
      * Marks the points with ids @p ids (the same list on every process) as
      * tracked: their current positions are available, in this order, from

@@ -1,0 +1,146 @@
+#ifndef bsmpm_load_stages_h
+#define bsmpm_load_stages_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The multipliers of a scene's loads at one point of its load path.
+   */
+  struct LoadLevel
+  {
+    /** Multiplies Loading/Gravity (the body force). */
+    double gravity = 0;
+    /** Multiplies the tractions and pressures of the curves and their
+     * prescribed displacements; the t of the rigid bodies' Displacement and
+     * Force expressions. */
+    double loads = 0;
+  };
+
+
+
+  /**
+   * The stages of an analysis (section "Stages", doc/stages.md): a sequence
+   * of load paths, each with its own load steps, that start from the state
+   * the one before left. Stage k says the multipliers of the gravity and of
+   * the other loads at its end; during the stage they go linearly from their
+   * values at the end of stage k - 1 (0, or a gravity of 1 where the ground
+   * starts with its initial stress) to those. The ground's weight first,
+   * then the works: stage 1 with Gravity factor 1 and Load factor 0, stage 2
+   * with both 1.
+   *
+   * One stage is the short form: Loading/Load steps, both multipliers equal
+   * to the load factor t of the step (t = n / Load steps).
+   *
+   * The load path is parametrised by tau: stage k covers tau in [k - 1, k],
+   * its own fraction s = tau - (k - 1). The load stepper, the collapse
+   * detector and the Newton solver work in tau; level() turns it into the
+   * multipliers, and the step table, summary.json and the output say the
+   * stage and s.
+   */
+  class LoadStages
+  {
+  public:
+    static constexpr unsigned int max_stages = 10;
+
+    /** One stage as the parameters give it. */
+    struct Stage
+    {
+      std::string  name;
+      unsigned int load_steps = 1;
+      /** Multipliers at the stage's end. */
+      LoadLevel end;
+      /** Whether the points' displacements restart from zero (their stress
+       * and state kept) at the stage's start. */
+      bool reset_displacements = false;
+      /** "default" (Limit load/Detect collapse), "on" or "off". */
+      std::string detect_collapse = "default";
+    };
+
+    /** One load step of the whole run. */
+    struct Step
+    {
+      /** The stage, from 1. */
+      unsigned int stage = 1;
+      /** The path parameter at the step's start and end. */
+      double from = 0;
+      double to   = 0;
+      /** Whether it is the stage's first step. */
+      bool first_of_stage = false;
+    };
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** Reads the stages (and Loading/Load steps for one). With
+     * @p gravity_at_start the body force is on from the start (the ground
+     * starts with its initial stress): the gravity multiplier is 1 at
+     * tau = 0, and 1 throughout in the short form. */
+    void
+    parse_parameters(ParameterHandler &prm, const bool gravity_at_start);
+
+    unsigned int
+    n_stages() const
+    {
+      return stages.size();
+    }
+
+    /** Whether the scene has more than one stage. */
+    bool
+    staged() const
+    {
+      return stages.size() > 1;
+    }
+
+    /** Whether all loads grow together from zero (one stage, no initial
+     * stress): what displacement control scales. */
+    bool
+    proportional() const
+    {
+      return stages.size() == 1 && start.gravity == 0;
+    }
+
+    const Stage &
+    stage(const unsigned int k) const
+    {
+      return stages[k - 1];
+    }
+
+    /** The stage's name, or "stage k" if it has none. */
+    std::string
+    stage_name(const unsigned int k) const;
+
+    /** Load steps of all stages. */
+    unsigned int
+    n_load_steps() const;
+
+    /** Load step @p n (from 1) of the whole run. */
+    Step
+    step(const unsigned int n) const;
+
+    /** The multipliers at path parameter @p tau. Beyond the last stage's
+     * end (displacement control) they go on along its line. */
+    LoadLevel
+    level(const double tau) const;
+
+    /** The fraction of stage @p k reached at @p tau. */
+    static double
+    fraction(const double tau, const unsigned int k)
+    {
+      return tau - (k - 1.);
+    }
+
+  private:
+    std::vector<Stage> stages;
+    /** The multipliers at tau = 0. */
+    LoadLevel start;
+  };
+} // namespace bsmpm
+
+#endif
