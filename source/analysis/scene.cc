@@ -60,6 +60,7 @@ namespace bsmpm
                       "initial stress, from the start).");
     prm.leave_subsection();
     LoadStages::declare_parameters(prm);
+    InitialStress::declare_parameters(prm);
 
     SupportReaction::declare_parameters(prm);
     Probe::declare_parameters(prm);
@@ -95,7 +96,8 @@ namespace bsmpm
     prm.enter_subsection("Loading");
     gravity = ParameterTools::get_point(prm, "Gravity");
     prm.leave_subsection();
-    stages.parse_parameters(prm, false);
+    initial_stress.parse_parameters(prm);
+    stages.parse_parameters(prm, initial_stress.enabled());
 
     reactions.parse_parameters(prm);
     probe.parse_parameters(prm);
@@ -171,6 +173,16 @@ namespace bsmpm
         {
           points.track(tracked);
           boundary_curves.read_initial_positions(points);
+        }
+      if (initial_stress.enabled())
+        {
+          const BoundingBox<2> box = region.bounding_box();
+          initial_stress.initialize(box.get_boundary_points().second[1],
+                                    box.get_boundary_points().first[1],
+                                    material,
+                                    gravity,
+                                    *constitutive_model);
+          initial_stress.apply(points, *constitutive_model);
         }
       if (checkpoint.resuming())
         {
@@ -511,8 +523,7 @@ namespace bsmpm
               }
             if (collapsed)
               {
-                collapse_detector.record(run_summary.quantities,
-                                         path.stage - 1.);
+                collapse_detector.record(run_summary.quantities);
                 if (stages.staged())
                   run_summary.quantities["limit_load_stage"] = path.stage;
                 run_summary.limit_load_reason = collapse_detector.reason();
@@ -521,9 +532,8 @@ namespace bsmpm
                             " in " + stages.stage_name(path.stage) :
                             std::string())
                       << ": limit load factor "
-                      << LoadStages::fraction(
-                           collapse_detector.limit_load_factor(), path.stage)
-                      << " (" << collapse_detector.reason()
+                      << collapse_detector.limit_load_factor() << " ("
+                      << collapse_detector.reason()
                       << "). The run stops here; summary.json gives "
                          "limit_load_factor and its bracket.\n";
                 break;
@@ -581,7 +591,7 @@ namespace bsmpm
       run_summary.quantities["yielded_points"] = record.n_yielded;
     contact.record(run_summary.quantities);
     boundary_curves.record_point_changes(run_summary.quantities);
-    collapse_detector.record(run_summary.quantities, record.stage - 1.);
+    collapse_detector.record(run_summary.quantities);
   }
 
 

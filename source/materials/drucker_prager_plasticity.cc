@@ -267,6 +267,14 @@ namespace bsmpm
 
 
 
+  double
+  DruckerPragerPlasticity::at_rest_coefficient() const
+  {
+    return 1. - std::sin(phi);
+  }
+
+
+
   std::string
   DruckerPragerPlasticity::name() const
   {

@@ -52,8 +52,10 @@ namespace bsmpm
   void
   CollapseDetector::initialize(const bool         nonlinear,
                                const bool         prescribes_displacement,
-                               const std::string &stage_mode)
+                               const std::string &stage_mode,
+                               const double       stage_start)
   {
+    offset               = stage_start;
     const std::string &m = stage_mode == "default" ? mode : stage_mode;
     is_active =
       m == "on" || (m == "auto" && nonlinear && !prescribes_displacement);
@@ -69,10 +71,12 @@ namespace bsmpm
 
   bool
   CollapseDetector::converged_increment(const unsigned int step,
-                                        const double       lambda,
+                                        const double       path_lambda,
                                         const double       delta,
                                         const double       displacement)
   {
+    // The stage's own load factor.
+    const double lambda = path_lambda - offset;
     if (!is_active || has_collapsed || !(delta > 0))
       return has_collapsed;
     const double flexibility = displacement / delta;
@@ -105,13 +109,14 @@ namespace bsmpm
 
   void
   CollapseDetector::failed_increment(const unsigned int step,
-                                     const double       lambda,
+                                     const double       path_lambda,
                                      const double       delta,
                                      const std::string &why)
   {
-    has_collapsed = true;
-    lower         = lambda;
-    upper         = lambda + delta;
+    const double lambda = path_lambda - offset;
+    has_collapsed       = true;
+    lower               = lambda;
+    upper               = lambda + delta;
     std::ostringstream text;
     text << "load step " << step
          << ": the Newton iterations of the load increment from load factor "
@@ -123,17 +128,16 @@ namespace bsmpm
 
 
   void
-  CollapseDetector::record(std::map<std::string, double> &quantities,
-                           const double                   stage_start) const
+  CollapseDetector::record(std::map<std::string, double> &quantities) const
   {
     if (!is_active)
       return;
     quantities["flexibility_ratio"] = last_ratio;
     if (has_collapsed)
       {
-        quantities["limit_load_factor"] = lower - stage_start;
-        quantities["limit_load_lower"]  = lower - stage_start;
-        quantities["limit_load_upper"]  = upper - stage_start;
+        quantities["limit_load_factor"] = lower;
+        quantities["limit_load_lower"]  = lower;
+        quantities["limit_load_upper"]  = upper;
       }
   }
 } // namespace bsmpm

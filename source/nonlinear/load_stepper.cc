@@ -106,7 +106,8 @@ namespace bsmpm
     parts.collapse_detector.initialize(parts.constitutive_update != nullptr &&
                                          may_yield,
                                        moves_supports,
-                                       parts.stages.stage(k).detect_collapse);
+                                       parts.stages.stage(k).detect_collapse,
+                                       k - 1.);
   }
 
 

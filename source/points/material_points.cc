@@ -253,6 +253,32 @@ namespace bsmpm
 
 
   void
+  MaterialPoints::set_stress(
+    const std::function<SymmetricTensor<2, 3>(const Point<2> &)> &stress,
+    const SymmetricTensor<4, 3>                                  &compliance)
+  {
+    for (auto &particle : particles)
+      {
+        const ArrayView<double>     properties = particle.get_properties();
+        const SymmetricTensor<2, 3> sigma = stress(particle.get_location());
+        properties[Property::stress]      = sigma[0][0];
+        properties[Property::stress + 1]  = sigma[1][1];
+        properties[Property::stress + 2]  = sigma[0][1];
+        if (n_point_properties == Property::n_properties_inelastic)
+          {
+            const SymmetricTensor<2, 3> eps          = compliance * sigma;
+            properties[Property::stress_zz]          = sigma[2][2];
+            properties[Property::elastic_strain]     = eps[0][0];
+            properties[Property::elastic_strain + 1] = eps[1][1];
+            properties[Property::elastic_strain + 2] = eps[2][2];
+            properties[Property::elastic_strain + 3] = eps[0][1];
+          }
+      }
+  }
+
+
+
+  void
   MaterialPoints::reset_displacements()
   {
     for (auto &particle : particles)

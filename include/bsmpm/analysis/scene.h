@@ -31,6 +31,7 @@
 #include <bsmpm/nonlinear/load_stages.h>
 #include <bsmpm/nonlinear/load_stepper.h>
 #include <bsmpm/nonlinear/newton_solver.h>
+#include <bsmpm/points/initial_stress.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
 #include <bsmpm/points/probe.h>
@@ -155,8 +156,9 @@ namespace bsmpm
     mutable TimerOutput timer;
     Timer               total_timer;
 
-    std::string scene_name;
-    LoadStages  stages;
+    std::string   scene_name;
+    LoadStages    stages;
+    InitialStress initial_stress;
     /** The constitutive model's strength is divided by this. */
     double                             strength_factor = 1;
     CollapseDetector                   collapse_detector;

@@ -128,6 +128,14 @@ namespace bsmpm
     virtual SymmetricTensor<4, 3>
     elastic_tangent() const;
 
+    /** The ratio K0 of horizontal to vertical stress in level ground at
+     * rest (InitialStress): nu / (1 - nu), that of an elastic layer under
+     * its own weight, unless the model knows better. */
+    virtual double
+    at_rest_coefficient() const
+    {
+      return poissons_ratio() / (1. - poissons_ratio());
+    }
     /** True for linear elasticity: no state, stress linear in the strain,
      * so that the code may keep its linear fast path. */
     virtual bool

@@ -53,6 +53,9 @@ namespace bsmpm
     double
     yield_function(const SymmetricTensor<2, 3> &stress,
                    const double eq_plastic_strain) const override;
+    /** Jaky's 1 - sin(phi) for normally consolidated ground. */
+    double
+    at_rest_coefficient() const override;
     std::string
     name() const override;
     /** c / F, tan(phi) / F and tan(psi) / F, the same match. */

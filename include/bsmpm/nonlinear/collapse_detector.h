@@ -54,12 +54,15 @@ namespace bsmpm
      * under a prescribed displacement the run follows the mechanism).
      * A stage's @p stage_mode "on" or "off" overrides the scene's; its
      * "default" keeps it. Every call starts a new reference (the first
-     * increment after it).
+     * increment after it). The load factors the detector reports are
+     * those of the stage that starts at the load path's @p stage_start
+     * (LoadStages): the path's lambda minus it.
      */
     void
     initialize(const bool         nonlinear,
                const bool         prescribes_displacement,
-               const std::string &stage_mode = "default");
+               const std::string &stage_mode  = "default",
+               const double       stage_start = 0);
 
     bool
     active() const
@@ -110,13 +113,10 @@ namespace bsmpm
     /**
      * The figures of the detector as quantities: 'flexibility_ratio' of
      * the last increment, and after a collapse 'limit_load_factor',
-     * 'limit_load_lower' and 'limit_load_upper' (the bracket), as
-     * fractions of the stage that starts at load path parameter
-     * @p stage_start (LoadStages).
+     * 'limit_load_lower' and 'limit_load_upper' (the bracket).
      */
     void
-    record(std::map<std::string, double> &quantities,
-           const double                   stage_start = 0) const;
+    record(std::map<std::string, double> &quantities) const;
 
     /** The flexibility ratio beyond which collapse is declared. */
     double
@@ -126,19 +126,21 @@ namespace bsmpm
     }
 
     /** What the run has seen so far (its reference flexibility, the
-     * bracket of the limit load), for checkpoints. */
+     * bracket of the limit load, the stage it watches), for checkpoints. */
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &reference &last_ratio &lower &upper &has_collapsed
-        &why_collapsed;
+      archive &reference &last_ratio &lower &upper &has_collapsed &why_collapsed
+        &offset &is_active;
     }
 
   private:
-    std::string mode              = "auto";
-    double      flexibility_limit = 20;
-    bool        is_active         = false;
+    std::string mode = "auto";
+    /** The load path's lambda where the stage began (initialize()). */
+    double offset            = 0;
+    double flexibility_limit = 20;
+    bool   is_active         = false;
 
     /** |du|_max / d(lambda) of the first increment that moved the body. */
     double reference = 0;

@@ -1,6 +1,8 @@
 #ifndef bsmpm_material_points_h
 #define bsmpm_material_points_h
 
+#include <deal.II/base/symmetric_tensor.h>
+
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <deal.II/particles/particle_handler.h>
@@ -214,6 +216,14 @@ namespace bsmpm
     void
     scale_volumes(const std::vector<types::particle_index> &ids,
                   const double                              factor);
+
+    /** Gives every point the stress @p stress at its position and, where
+     * the points store the state of a nonlinear model, the elastic strain
+     * @p compliance : stress that carries it (InitialStress). */
+    void
+    set_stress(
+      const std::function<SymmetricTensor<2, 3>(const Point<2> &)> &stress,
+      const SymmetricTensor<4, 3>                                  &compliance);
 
     /** Sets the total displacements of all points to zero (a stage that
      * measures its own displacements); positions, strains, stresses and

@@ -1,0 +1,142 @@
+#include <bsmpm/points/initial_stress.h>
+#include <bsmpm/points/material_points.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace bsmpm
+{
+  void
+  InitialStress::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Initial stress");
+    prm.declare_entry(
+      "Kind",
+      "none",
+      Patterns::Selection("none|K0 procedure"),
+      "none: the body starts unstressed, and gravity comes on with the "
+      "load steps. K0 procedure: level ground starts in the state of a "
+      "laterally confined layer under its own weight (doc/stages.md): "
+      "sigma_yy = -gamma (Ground surface - y), gamma = Material/Density "
+      "times |Loading/Gravity|, the horizontal stresses K0 sigma_yy, no "
+      "shear; gravity is then on from the start.");
+    prm.declare_entry("Ground surface",
+                      "auto",
+                      Patterns::Anything(),
+                      "K0 procedure: the height y of the level ground "
+                      "surface in m; auto: the top of the body region.");
+    prm.declare_entry("K0",
+                      "auto",
+                      Patterns::Anything(),
+                      "K0 procedure: the ratio of horizontal to vertical "
+                      "stress; auto: nu / (1 - nu) (linear elastic, von "
+                      "Mises), 1 - sin(phi) (Drucker-Prager).");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  InitialStress::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Initial stress");
+    k0_procedure = prm.get("Kind") == "K0 procedure";
+    surface_text = Utilities::trim(prm.get("Ground surface"));
+    k0_text      = Utilities::trim(prm.get("K0"));
+    prm.leave_subsection();
+    const auto number = [](const std::string &text, const std::string &name) {
+      std::istringstream in(text);
+      double             value = 0;
+      in >> value;
+      AssertThrow(!in.fail() && in.eof() && std::isfinite(value),
+                  ExcMessage("Initial stress/" + name + " = '" + text +
+                             "': give a number, or auto."));
+      return value;
+    };
+    if (surface_text != "auto")
+      surface = number(surface_text, "Ground surface");
+    if (k0_text != "auto")
+      {
+        coefficient = number(k0_text, "K0");
+        AssertThrow(coefficient >= 0,
+                    ExcMessage("Initial stress/K0 = " + k0_text +
+                               ": a ratio of stresses, at least 0."));
+      }
+  }
+
+
+
+  void
+  InitialStress::initialize(const double                 top,
+                            const double                 bottom,
+                            const LinearElasticMaterial &material,
+                            const Tensor<1, 2>          &gravity,
+                            const ConstitutiveModel     &model)
+  {
+    if (!k0_procedure)
+      return;
+    AssertThrow(material.model() != LinearElasticMaterial::Model::plane_stress,
+                ExcMessage("Initial stress/Kind = K0 procedure is for ground "
+                           "in plane strain; Material/Model is plane "
+                           "stress."));
+    AssertThrow(gravity[0] == 0 && gravity[1] < 0 && material.density() > 0,
+                ExcMessage("Initial stress/Kind = K0 procedure needs the "
+                           "weight of the ground: Material/Density > 0 and "
+                           "Loading/Gravity vertical and downwards (0, -g)."));
+    if (surface_text == "auto")
+      surface = top;
+    if (k0_text == "auto")
+      coefficient = model.at_rest_coefficient();
+    unit_weight = -material.density() * gravity[1];
+
+    // The stress grows in proportion to depth; a convex yield function is
+    // largest at an end of that line: the surface or the body's bottom.
+    const Point<2> deepest(0., bottom);
+    const double   f =
+      model.yield_function(stress(deepest), /*eq_plastic_strain=*/0.);
+    if (f > 0)
+      {
+        // Where along the depth it crosses the surface (f(0) <= 0).
+        const double f0 =
+          model.yield_function(stress(Point<2>(0., surface)), 0.);
+        const double depth =
+          (surface - bottom) * (f0 < 0 ? -f0 / (f - f0) : 0.);
+        std::ostringstream message;
+        message << "Initial stress: K0 = " << coefficient
+                << " puts the ground deeper than " << depth
+                << " m below the surface y = " << surface
+                << " outside the yield surface of the " << model.name()
+                << " material (at the bottom, y = " << bottom
+                << ", the yield function is " << f
+                << " > 0): the material cannot carry that state at rest. "
+                   "Give a K0 nearer 1 (Initial stress/K0), or let a first "
+                   "stage bring the ground's weight (Stages).";
+        AssertThrow(false, ExcMessage(message.str()));
+      }
+  }
+
+
+
+  SymmetricTensor<2, 3>
+  InitialStress::stress(const Point<2> &x) const
+  {
+    SymmetricTensor<2, 3> sigma;
+    const double          sigma_v = -unit_weight * std::max(0., surface - x[1]);
+    sigma[0][0]                   = coefficient * sigma_v;
+    sigma[1][1]                   = sigma_v;
+    sigma[2][2]                   = coefficient * sigma_v;
+    return sigma;
+  }
+
+
+
+  void
+  InitialStress::apply(MaterialPoints          &points,
+                       const ConstitutiveModel &model) const
+  {
+    if (!k0_procedure)
+      return;
+    const SymmetricTensor<4, 3> compliance = invert(model.elastic_tangent());
+    points.set_stress([&](const Point<2> &x) { return stress(x); }, compliance);
+  }
+} // namespace bsmpm
