@@ -477,6 +477,8 @@ namespace bsmpm
 
     const unsigned int first_step =
       checkpoint.resuming() ? run_checkpoint->resume(run_summary, output) : 1;
+    // Stages after the checkpoint's may have changed their steps.
+    run_summary.load_steps = stages.n_load_steps();
     if (pcout.is_active())
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);

@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <bsmpm/io/checkpoint.h>
+#include <bsmpm/nonlinear/load_stages.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
@@ -321,13 +322,40 @@ namespace bsmpm
 
 
   void
-  Checkpoint::check_resume_override(const std::string &path)
+  Checkpoint::check_resume_override(const std::string &path,
+                                    const std::string &directory,
+                                    ParameterHandler  &prm)
   {
-    AssertThrow(path.rfind("Output/", 0) == 0,
+    if (path.rfind("Output/", 0) == 0)
+      return;
+    // The stage that the checkpoint's step belongs to (the parameters
+    // are still the checkpoint's): that stage and those before it have
+    // run, the ones after it may change.
+    LoadStages stages;
+    stages.parse_parameters(prm, false);
+    fs::path where = fs::path(directory).lexically_normal();
+    if (!where.has_filename())
+      where = where.parent_path();
+    const long         step = step_of(where);
+    const unsigned int reached =
+      step > 0 ? stages.step(static_cast<unsigned int>(step)).stage : 1;
+    const std::string head = "Stages/Stage ";
+    unsigned int      k    = 0;
+    if (path.rfind(head, 0) == 0)
+      k = std::atoi(path.c_str() + head.size());
+    AssertThrow(path != "Stages/Number of stages" || stages.staged(),
+                ExcMessage("--set \"" + path +
+                           "=...\" with --resume: the checkpoint's scene "
+                           "has one stage (Loading/Load steps); a scene "
+                           "in stages declares them from its start."));
+    AssertThrow(k > reached || path == "Stages/Number of stages",
                 ExcMessage("--set \"" + path +
                            "=...\" with --resume: a resumed run keeps the "
                            "parameters of its checkpoint; only those of "
-                           "Output may change."));
+                           "Output, the number of stages and the stages "
+                           "after the checkpoint's (stage " +
+                           std::to_string(reached) + ", step " +
+                           std::to_string(step) + ") may change."));
   }
 
 

@@ -118,7 +118,7 @@ namespace bsmpm
     for (const auto &assignment : overrides)
       {
         Checkpoint::check_resume_override(
-          assignment.substr(0, assignment.find('=')));
+          assignment.substr(0, assignment.find('=')), from, prm);
         apply(prm, assignment, "--set");
       }
     return from;

@@ -166,17 +166,20 @@ namespace bsmpm
     // The tolerance's scale, |R(0)|; with the tangent predictor |R| at its
     // vanishing step, which differs from it by a millionth of the
     // increment's force: one system is the scale and the start (one Newton
-    // system less per increment). Not below a millionth of the largest
-    // internal force of the run so far: an increment that asks next to
-    // nothing (a body that a rigid body has let go of, its residual
-    // stresses in balance) has an |R(0)| that is round-off of forces a
-    // billion times larger, which a relative tolerance cannot reach.
+    // system less per increment). Not below 1e-5 of the largest internal
+    // force of the run so far: an increment that asks next to nothing (a
+    // body that a rigid body has let go of, its residual stresses in
+    // balance, a ground that starts with the initial stress of its weight)
+    // has an |R(0)| that is round-off of forces a billion times larger,
+    // which a relative tolerance cannot reach (the column in its K0 state:
+    // |R| stays at 2e-15 of the internal force, above a millionth of it
+    // times the default tolerance).
     NewtonStart  start;
     const double at_start =
       newton_residual(prescribed, increment, motion, keep_best);
     largest_internal_force =
       std::max(largest_internal_force, assembly.internal_force_size());
-    start.reference = std::max(at_start, 1e-6 * largest_internal_force);
+    start.reference = std::max(at_start, 1e-5 * largest_internal_force);
     // |R| of the system the assembly holds, that of the start.
     start.norm = at_start;
     // The tangent predictor keeps force-controlled bodies where the last

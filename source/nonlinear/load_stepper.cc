@@ -204,6 +204,15 @@ namespace bsmpm
         // The increment's size per unit load, before the points take it.
         const bool collapsed = collapse_detector.converged_increment(
           step, lambda, delta, parts.increment.linfty_norm());
+        if (collapsed)
+          {
+            // A mechanism: at the limit load its size is arbitrary (and may
+            // carry the points off the grid), so the body stays where the
+            // last increment left it; the grid's output shows the
+            // increment.
+            ++record.increments;
+            break;
+          }
         if (parts.contact != nullptr)
           {
             parts.contact->finish_increment(parts.curves,
@@ -221,8 +230,6 @@ namespace bsmpm
         phases.move(step, delta);
         lambda += delta;
         ++record.increments;
-        if (collapsed)
-          break;
       }
     // The step's own factor where it finished (the sum of cut increments
     // may differ from it in the last bits).

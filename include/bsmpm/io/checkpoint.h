@@ -93,9 +93,13 @@ namespace bsmpm
     read_parameters(const std::string &directory, ParameterHandler &prm);
 
     /** Throws unless the parameter @p path ("Section/Name") may be changed
-     * with --set when resuming: only those of the output may. */
+     * with --set when resuming from the checkpoint @p directory whose
+     * parameters @p prm holds: those of the output, the number of stages
+     * and those of the stages after the checkpoint's (LoadStages). */
     static void
-    check_resume_override(const std::string &path);
+    check_resume_override(const std::string &path,
+                          const std::string &directory,
+                          ParameterHandler  &prm);
 
     /** Makes the next run resume from the checkpoint @p directory. */
     void
