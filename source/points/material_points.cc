@@ -287,6 +287,7 @@ namespace bsmpm
         properties[Property::displacement]     = 0;
         properties[Property::displacement + 1] = 0;
       }
+    record_tracked_points();
   }
 
 

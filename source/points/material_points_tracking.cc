@@ -187,13 +187,15 @@ namespace bsmpm
     const unsigned int slot = tracked_slot(id);
     if (slot == numbers::invalid_unsigned_int)
       return;
-    std::array<double, 12> state{{double(slot),
+    std::array<double, 14> state{{double(slot),
                                   x[0],
                                   x[1],
                                   properties[Property::stress],
                                   properties[Property::stress + 1],
                                   properties[Property::stress + 2]}};
     state[11] = 1.; // det F
+    state[12] = properties[Property::displacement];
+    state[13] = properties[Property::displacement + 1];
     if (properties.size() >= Property::n_properties_inelastic)
       {
         for (unsigned int k = 0; k < 4; ++k)
@@ -209,7 +211,8 @@ namespace bsmpm
   void
   MaterialPoints::tracked_states(std::vector<Point<2>>     &positions,
                                  std::vector<Voigt>        &stresses,
-                                 std::vector<TrackedState> *states) const
+                                 std::vector<TrackedState> *states,
+                                 std::vector<Tensor<1, 2>> *displacements) const
   {
     const auto all =
       Utilities::MPI::all_gather(grid.mpi_communicator(), tracked_local);
@@ -222,6 +225,8 @@ namespace bsmpm
     stresses.assign(n_tracked_slots, Voigt());
     if (states != nullptr)
       states->assign(n_tracked_slots, TrackedState{{0., 0., 0., 0., 0., 1.}});
+    if (displacements != nullptr)
+      displacements->assign(n_tracked_slots, Tensor<1, 2>());
     for (const auto &part : all)
       for (const auto &state : part)
         {
@@ -231,7 +236,11 @@ namespace bsmpm
           positions[slot] = Point<2>(state[1], state[2]);
           stresses[slot]  = Voigt({state[3], state[4], state[5]});
           if (states != nullptr)
-            std::copy(state.begin() + 6, state.end(), (*states)[slot].begin());
+            std::copy(state.begin() + 6,
+                      state.begin() + 12,
+                      (*states)[slot].begin());
+          if (displacements != nullptr)
+            (*displacements)[slot] = Tensor<1, 2>({state[12], state[13]});
         }
   }
 } // namespace bsmpm

@@ -52,10 +52,12 @@ namespace bsmpm
   Probe::record(const MaterialPoints          &points,
                 std::map<std::string, double> &quantities) const
   {
-    std::vector<Point<2>> positions;
-    std::vector<Voigt>    stresses;
-    points.tracked_states(positions, stresses);
-    const Tensor<1, 2> u                 = positions[slot] - initial_position;
+    std::vector<Point<2>>     positions;
+    std::vector<Voigt>        stresses;
+    std::vector<Tensor<1, 2>> displacements;
+    points.tracked_states(positions, stresses, nullptr, &displacements);
+    // The point's own record, which a stage may restart from zero.
+    const Tensor<1, 2> u                 = displacements[slot];
     quantities[name + "_displacement_x"] = u[0];
     quantities[name + "_displacement_y"] = u[1];
     quantities[name + "_deflection"]     = -u[1];

@@ -292,11 +292,14 @@ namespace bsmpm
 
     /** Current positions and stresses of the tracked points, in the order
      * given to track(), on every process (zero in the slots of removed
-     * points); with @p states their constitutive states too. */
+     * points); with @p states their constitutive states too, with
+     * @p displacements their total displacements (Property::displacement,
+     * which a stage may reset). */
     void
     tracked_states(std::vector<Point<2>>     &positions,
                    std::vector<Voigt>        &stresses,
-                   std::vector<TrackedState> *states = nullptr) const;
+                   std::vector<TrackedState> *states        = nullptr,
+                   std::vector<Tensor<1, 2>> *displacements = nullptr) const;
 
     /** Whether a point with volume lies in @p cell. */
     bool
@@ -457,9 +460,9 @@ namespace bsmpm
     /** Refills tracked_local from every locally owned point. */
     void
     record_tracked_points();
-    /** State of the locally owned tracked points: slot, x, y, stress and
-     * the TrackedState. */
-    std::vector<std::array<double, 12>> tracked_local;
+    /** State of the locally owned tracked points: slot, x, y, stress, the
+     * TrackedState and the total displacement. */
+    std::vector<std::array<double, 14>> tracked_local;
   };
 } // namespace bsmpm
 
