@@ -148,7 +148,9 @@ namespace bsmpm
       "0",
       Patterns::Integer(0),
       "Write a checkpoint every this many load steps into "
-      "<Directory>/checkpoint-<step> (the last two are kept); "
+      "<Directory>/checkpoint-<step> (the last two are kept, and in a "
+      "scene in stages also the last step of every stage but the last, "
+      "from which a later stage can be resumed with changed parameters); "
       "`bsmpm --resume <Directory>` continues the run from the latest. "
       "0 writes none.");
     prm.leave_subsection();
@@ -174,7 +176,9 @@ namespace bsmpm
   Checkpoint::writes_step(const unsigned int step,
                           const unsigned int n_steps) const
   {
-    return interval > 0 && step % interval == 0 && step < n_steps;
+    return interval > 0 &&
+           (step % interval == 0 || stage_ends.count(step) > 0) &&
+           step < n_steps;
   }
 
 
@@ -256,8 +260,10 @@ namespace bsmpm
               const std::string n = p.filename().string();
               const bool        stale_temporary =
                 n.rfind("checkpoint-", 0) == 0 && p.extension() == ".tmp";
-              if ((step_of(p) >= 0 || stale_temporary) && p != temporary &&
-                  n != previous)
+              const long at = step_of(p);
+              if ((at >= 0 || stale_temporary) && p != temporary &&
+                  n != previous &&
+                  stage_ends.count(static_cast<unsigned int>(at)) == 0)
                 fs::remove_all(p, code);
             }
         if (error.empty())

@@ -10,6 +10,7 @@
 
 #include <bsmpm/assembly/cell_scatter.h>
 #include <bsmpm/assembly/constitutive_update.h>
+#include <bsmpm/base/load_level.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
 #include <bsmpm/boundary/neumann_loads.h>
@@ -18,7 +19,6 @@
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
-#include <bsmpm/nonlinear/load_stages.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/verification/exact_solution.h>
 

@@ -9,6 +9,7 @@
 #include <bsmpm/io/run_summary.h>
 #include <bsmpm/points/material_points.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,15 @@ namespace bsmpm
      * after the last). */
     bool
     writes_step(const unsigned int step, const unsigned int n_steps) const;
+
+    /** The last steps of the stages of a staged scene (LoadStages): with
+     * checkpoints on, each is written and kept, to resume a later stage
+     * from it with changed parameters. */
+    void
+    keep_stage_ends(const std::set<unsigned int> &steps)
+    {
+      stage_ends = steps;
+    }
 
     /** Writes the checkpoint after load step @p step (collective).
      * @p weak_cells are this process's part of the weak cells the system
@@ -140,6 +150,7 @@ namespace bsmpm
     read_scene_state() const;
 
   private:
+    std::set<unsigned int> stage_ends;
     MPI_Comm     communicator;
     unsigned int interval = 0;
     std::string  output_directory;

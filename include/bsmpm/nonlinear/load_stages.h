@@ -3,27 +3,14 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <bsmpm/base/load_level.h>
+
 #include <string>
 #include <vector>
 
 namespace bsmpm
 {
   using namespace dealii;
-
-  /**
-   * The multipliers of a scene's loads at one point of its load path.
-   */
-  struct LoadLevel
-  {
-    /** Multiplies Loading/Gravity (the body force). */
-    double gravity = 0;
-    /** Multiplies the tractions and pressures of the curves and their
-     * prescribed displacements; the t of the rigid bodies' Displacement and
-     * Force expressions. */
-    double loads = 0;
-  };
-
-
 
   /**
    * The stages of an analysis (section "Stages", doc/stages.md): a sequence

@@ -1,0 +1,21 @@
+#ifndef bsmpm_load_level_h
+#define bsmpm_load_level_h
+
+namespace bsmpm
+{
+  /**
+   * The multipliers of a scene's loads at one point of its load path
+   * (LoadStages).
+   */
+  struct LoadLevel
+  {
+    /** Multiplies Loading/Gravity (the body force). */
+    double gravity = 0;
+    /** Multiplies the tractions and pressures of the curves and their
+     * prescribed displacements; the t of the rigid bodies' Displacement and
+     * Force expressions. */
+    double loads = 0;
+  };
+} // namespace bsmpm
+
+#endif
