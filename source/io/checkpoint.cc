@@ -48,8 +48,9 @@ namespace bsmpm
     namespace fs = std::filesystem;
 
     /** First line of every archive: what it is and in which format. */
-    const std::string  magic   = "bsmpm checkpoint";
-    const unsigned int version = 6;
+    const std::string  magic = "bsmpm checkpoint";
+    const unsigned int version =
+      7; // 7: the stage of a step, the collapse detector's stage
 
     /** What both archives start with, checked before anything else is
      * read. */
