@@ -242,7 +242,8 @@ namespace bsmpm
                               constitutive_update->completes_moments(),
                             finite_strain(),
                             curve_contact,
-                            reactions.curves()},
+                            reactions.curves(),
+                            excavation},
       timer);
     assembly->setup();
     if (curve_contact != nullptr)
@@ -447,6 +448,26 @@ namespace bsmpm
         pcout << ", displacements from zero";
       }
     pcout << '\n';
+    if (!stages.stage(k).excavation.empty())
+      {
+        const std::string where =
+          "Stages/Stage " + std::to_string(k) + "/Excavation";
+        AssertThrow(!finite_strain(),
+                    ExcMessage(where + ": excavation is for small strain."));
+        std::vector<Point<2>> tracked;
+        std::vector<Voigt>    stresses;
+        points.tracked_states(tracked, stresses);
+        const auto removed =
+          excavation.remove(stages.stage(k).excavation,
+                            points,
+                            grid,
+                            assembly->kernel(),
+                            before.gravity * material.density() * gravity,
+                            tracked,
+                            where);
+        run_summary.quantities["excavated_points"] += removed;
+        pcout << "       " << removed << " points excavated\n";
+      }
   }
 
 
@@ -484,6 +505,18 @@ namespace bsmpm
       checkpoint.resuming() ? run_checkpoint->resume(run_summary, output) : 1;
     // Stages after the checkpoint's may have changed their steps.
     run_summary.load_steps = stages.n_load_steps();
+    if (first_step > 1 && first_step <= stages.n_load_steps())
+      {
+        const LoadStages::Step resumed = stages.step(first_step);
+        AssertThrow(resumed.first_of_stage ||
+                      stages.stage(resumed.stage).excavation.empty(),
+                    ExcMessage(
+                      "The checkpoint lies inside stage " +
+                      std::to_string(resumed.stage) +
+                      ", which excavates: the forces it releases are not in "
+                      "the checkpoint. Resume from the checkpoint at the end "
+                      "of the stage before."));
+      }
     if (pcout.is_active())
       for (const auto &record : run_summary.steps)
         run_summary.print_step(pcout.get_stream(), record);

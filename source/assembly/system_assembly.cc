@@ -344,6 +344,9 @@ namespace bsmpm
                                      parts.finite_strain ? &system_matrix :
                                                            nullptr);
       }
+    parts.excavation.add_released_forces(level.release,
+                                         constraints,
+                                         system_rhs);
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
     assembly_moments = nullptr;

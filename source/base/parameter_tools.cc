@@ -89,6 +89,37 @@ namespace bsmpm
 
 
 
+    std::vector<Point<2>>
+    parse_points(const std::string &text, const std::string &where)
+    {
+      std::vector<Point<2>> points;
+      for (const auto &pair : Utilities::split_string_list(text, ';'))
+        {
+          if (pair.empty())
+            continue;
+          const auto xy = Utilities::split_string_list(pair, ',');
+          AssertThrow(xy.size() == 2,
+                      ExcMessage(where + ": '" + pair +
+                                 "' is not a point 'x, y'."));
+          try
+            {
+              const Point<2> p(Utilities::string_to_double(xy[0]),
+                               Utilities::string_to_double(xy[1]));
+              require_finite(p[0] + p[1], where);
+              points.push_back(p);
+            }
+          catch (const ExceptionBase &)
+            {
+              AssertThrow(false,
+                          ExcMessage(where + ": '" + pair +
+                                     "' is not a point 'x, y'."));
+            }
+        }
+      return points;
+    }
+
+
+
     void
     require_finite(const double value, const std::string &what)
     {

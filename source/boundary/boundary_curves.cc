@@ -29,35 +29,6 @@ namespace bsmpm
       return "Curve " + std::to_string(c + 1);
     }
 
-    /** "x, y; x, y; ..." as points. */
-    std::vector<Point<2>>
-    parse_coordinates(const std::string &text, const std::string &where)
-    {
-      std::vector<Point<2>> points;
-      for (const auto &pair : Utilities::split_string_list(text, ';'))
-        {
-          if (pair.empty())
-            continue;
-          const auto xy = Utilities::split_string_list(pair, ',');
-          AssertThrow(xy.size() == 2,
-                      ExcMessage(where + ": '" + pair +
-                                 "' is not a point 'x, y'."));
-          try
-            {
-              const Point<2> p(Utilities::string_to_double(xy[0]),
-                               Utilities::string_to_double(xy[1]));
-              ParameterTools::require_finite(p[0] + p[1], where);
-              points.push_back(p);
-            }
-          catch (const ExceptionBase &)
-            {
-              AssertThrow(false,
-                          ExcMessage(where + ": '" + pair +
-                                     "' is not a point 'x, y'."));
-            }
-        }
-      return points;
-    }
 
     /** Points of a CSV file: one "x, y" (or "x y") per line; '#' starts a
      * comment; the first line may be a header. */
@@ -263,8 +234,9 @@ namespace bsmpm
                                            OuterLayer::through_points :
                                            OuterLayer::region_edge;
             if (source.kind == "coordinates")
-              source.positions = parse_coordinates(prm.get("Coordinates"),
-                                                   where + "/Coordinates");
+              source.positions =
+                ParameterTools::parse_points(prm.get("Coordinates"),
+                                             where + "/Coordinates");
             else if (source.kind == "file")
               source.positions = read_points_file(prm.get("File"), where);
             curves.push_back(std::move(curve));

@@ -1,3 +1,4 @@
+#include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/nonlinear/load_stages.h>
 
 #include <algorithm>
@@ -68,6 +69,16 @@ namespace bsmpm
           "their stresses and state kept: the settlement of a footing "
           "without that of the ground under its own weight.");
         prm.declare_entry(
+          "Excavation",
+          "",
+          Patterns::Anything(),
+          "A polygon 'x0, y0; x1, y1; ...' in m whose material the stage "
+          "removes at its start (small strain): the points inside leave "
+          "the body, and the forces they exerted on the rest are released "
+          "over the stage's load steps. Empty: none. The boundary curves "
+          "must stay more than a cell away from it (the cut's face is the "
+          "edge of the points left).");
+        prm.declare_entry(
           "Detect collapse",
           "default",
           Patterns::Selection("default|on|off"),
@@ -112,6 +123,8 @@ namespace bsmpm
         stage.end.loads           = prm.get_double("Load factor");
         stage.reset_displacements = prm.get_bool("Reset displacements");
         stage.detect_collapse     = prm.get("Detect collapse");
+        stage.excavation          = ParameterTools::parse_points(
+          prm.get("Excavation"), "Stages/" + stage_section(k) + "/Excavation");
         stages.push_back(stage);
         prm.leave_subsection();
       }
@@ -175,6 +188,7 @@ namespace bsmpm
     const LoadLevel &after  = stages[k - 1].end;
     const double     s      = fraction(tau, k);
     return {before.gravity + s * (after.gravity - before.gravity),
-            before.loads + s * (after.loads - before.loads)};
+            before.loads + s * (after.loads - before.loads),
+            stages[k - 1].excavation.empty() ? 0. : 1. - s};
   }
 } // namespace bsmpm

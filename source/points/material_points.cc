@@ -278,6 +278,43 @@ namespace bsmpm
 
 
 
+  types::particle_index
+  MaterialPoints::remove_points(
+    const std::function<bool(const Point<2> &)> &inside,
+    std::vector<CellMoments>                    &moments)
+  {
+    moments.assign(grid.triangulation().n_active_cells(), CellMoments());
+    std::vector<Particles::ParticleHandler<2>::particle_iterator> removed;
+    for (auto particle = particles.begin(); particle != particles.end();
+         ++particle)
+      {
+        const ArrayView<const double> properties = particle->get_properties();
+        if (properties[Property::volume] > 0 &&
+            inside(particle->get_location()))
+          {
+            const auto cell = particle->get_surrounding_cell();
+            moments[cell->active_cell_index()].add(
+              particle->get_reference_location(),
+              properties[Property::volume],
+              Voigt({properties[Property::stress],
+                     properties[Property::stress + 1],
+                     properties[Property::stress + 2]}));
+            removed.push_back(particle);
+          }
+      }
+    const types::particle_index n =
+      Utilities::MPI::sum<types::particle_index>(removed.size(),
+                                                 grid.mpi_communicator());
+    particles.remove_particles(removed);
+    particles.update_cached_numbers();
+    n_material_points -= n;
+    neighbourhood_current = false;
+    find_material_cells();
+    return n;
+  }
+
+
+
   void
   MaterialPoints::reset_displacements()
   {

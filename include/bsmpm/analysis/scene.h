@@ -31,6 +31,7 @@
 #include <bsmpm/nonlinear/load_stages.h>
 #include <bsmpm/nonlinear/load_stepper.h>
 #include <bsmpm/nonlinear/newton_solver.h>
+#include <bsmpm/points/excavation.h>
 #include <bsmpm/points/initial_stress.h>
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
@@ -159,6 +160,8 @@ namespace bsmpm
     std::string   scene_name;
     LoadStages    stages;
     InitialStress initial_stress;
+    /** The material the current stage removes (LoadStages). */
+    Excavation excavation;
     /** The constitutive model's strength is divided by this. */
     double                             strength_factor = 1;
     CollapseDetector                   collapse_detector;

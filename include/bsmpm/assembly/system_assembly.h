@@ -19,6 +19,7 @@
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/materials/material.h>
+#include <bsmpm/points/excavation.h>
 #include <bsmpm/points/q1_cell_kernel.h>
 #include <bsmpm/verification/exact_solution.h>
 
@@ -93,6 +94,9 @@ namespace bsmpm
        * keeps apart, each in a matrix of the system's pattern, for
        * support_forces(). */
       std::vector<unsigned int> reaction_curves;
+      /** The material a stage removed, whose forces on the rest assemble()
+       * adds times LoadLevel::release. */
+      const Excavation &excavation;
     };
 
     SystemAssembly(const Parts &parts, TimerOutput &timer);

@@ -15,6 +15,10 @@ namespace bsmpm
      * prescribed displacements; the t of the rigid bodies' Displacement and
      * Force expressions. */
     double loads = 0;
+    /** Multiplies the forces that the material removed by an excavation
+     * exerted on the rest (Excavation): 1 at the stage's start, 0 at its
+     * end. */
+    double release = 0;
   };
 } // namespace bsmpm
 

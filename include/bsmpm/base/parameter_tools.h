@@ -31,6 +31,11 @@ namespace bsmpm
     std::vector<unsigned int>
     get_unsigned(const ParameterHandler &prm, const std::string &name);
 
+    /** Reads @p text as points "x0, y0; x1, y1; ..." (empty items
+     * skipped); a malformed one is an input error naming @p where. */
+    std::vector<Point<2>>
+    parse_points(const std::string &text, const std::string &where);
+
     /** Throws an input error unless @p value is finite. */
     void
     require_finite(const double value, const std::string &what);

@@ -2,6 +2,7 @@
 #define bsmpm_load_stages_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
 
 #include <bsmpm/base/load_level.h>
 
@@ -48,6 +49,9 @@ namespace bsmpm
       bool reset_displacements = false;
       /** "default" (Limit load/Detect collapse), "on" or "off". */
       std::string detect_collapse = "default";
+      /** The polygon whose material the stage removes (Excavation); empty
+       * for none. */
+      std::vector<Point<2>> excavation;
     };
 
     /** One load step of the whole run. */

@@ -225,6 +225,16 @@ namespace bsmpm
       const std::function<SymmetricTensor<2, 3>(const Point<2> &)> &stress,
       const SymmetricTensor<4, 3>                                  &compliance);
 
+    /**
+     * Removes the material points (with volume) for which @p inside is true
+     * at their position, after adding their volumes and stresses to
+     * @p moments (indexed by active_cell_index(), as compute_cell_moments())
+     * (Excavation). Returns how many were removed on all processes.
+     */
+    types::particle_index
+    remove_points(const std::function<bool(const Point<2> &)> &inside,
+                  std::vector<CellMoments>                    &moments);
+
     /** Sets the total displacements of all points to zero (a stage that
      * measures its own displacements); positions, strains, stresses and
      * state stay. */

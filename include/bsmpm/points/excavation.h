@@ -1,0 +1,94 @@
+#ifndef bsmpm_excavation_h
+#define bsmpm_excavation_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <bsmpm/geometry/background_grid.h>
+#include <bsmpm/points/q1_cell_kernel.h>
+
+#include <array>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  class MaterialPoints;
+
+  /**
+   * The material removed by a stage (section "Stages", doc/stages.md): the
+   * material points inside a polygon leave the body at the stage's start,
+   * and the forces they exerted on the rest are released over the stage's
+   * steps.
+   *
+   * Before the removal the body is in balance, F_ext - F_int = 0 at every
+   * node. Without the removed points the rest would see at once the
+   * out-of-balance force f = F_ext(removed) - F_int(removed) = sum over the
+   * removed points of V (N^T b - B^T sigma): the forces the removed
+   * material exerted on the rest, at the nodes they shared. The stage adds
+   * (1 - s) f to the loads, s its own factor, so that the rest starts in
+   * balance and carries the cut's unloading gradually; a cut that cannot
+   * stand collapses part way (the collapse detector's limit load factor is
+   * the fraction released).
+   *
+   * Small strain: the forces are taken from the points' cell moments (the
+   * Q1 kernel integrates B^T sigma over them exactly).
+   */
+  class Excavation
+  {
+  public:
+    /**
+     * Removes the material points inside @p polygon from @p points and
+     * keeps the forces they exerted on the rest under the body force
+     * @p body_force (per unit volume). @p curve_points are the positions of
+     * the tracked points (boundary curves, probe): the cut's face does not
+     * yet become a curve, so a polygon that holds one of them, or comes
+     * within a cell of one, is refused (the message names @p where).
+     * Returns how many points were removed.
+     */
+    types::particle_index
+    remove(const std::vector<Point<2>> &polygon,
+           MaterialPoints              &points,
+           const BackgroundGrid        &grid,
+           const Q1CellKernel          &kernel,
+           const Tensor<1, 2>          &body_force,
+           const std::vector<Point<2>> &curve_points,
+           const std::string           &where);
+
+    /** Whether a removal left forces to release. */
+    bool
+    releases() const
+    {
+      return !forces.empty();
+    }
+
+    /** Adds @p factor times the released forces to @p rhs, with
+     * @p constraints. */
+    void
+    add_released_forces(const double                     factor,
+                        const AffineConstraints<double> &constraints,
+                        TrilinosWrappers::MPI::Vector   &rhs) const;
+
+    /** Whether @p x lies inside @p polygon (crossing number; a point on an
+     * edge counts as inside on one side only). */
+    static bool
+    inside(const std::vector<Point<2>> &polygon, const Point<2> &x);
+
+  private:
+    /** A locally owned cell that lost points: its DoFs and the forces on
+     * them. */
+    struct CellForces
+    {
+      std::array<types::global_dof_index, 8> dofs;
+      std::array<double, 8>                  forces;
+    };
+    std::vector<CellForces> forces;
+  };
+} // namespace bsmpm
+
+#endif

@@ -1,0 +1,120 @@
+#include <deal.II/base/mpi.h>
+
+#include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/points/excavation.h>
+#include <bsmpm/points/material_points.h>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+namespace bsmpm
+{
+  bool
+  Excavation::inside(const std::vector<Point<2>> &polygon, const Point<2> &x)
+  {
+    bool               in = false;
+    const unsigned int n  = polygon.size();
+    for (unsigned int i = 0, j = n - 1; i < n; j = i++)
+      {
+        const Point<2> &a = polygon[i], &b = polygon[j];
+        if ((a[1] > x[1]) != (b[1] > x[1]) &&
+            x[0] < a[0] + (x[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]))
+          in = !in;
+      }
+    return in;
+  }
+
+
+
+  types::particle_index
+  Excavation::remove(const std::vector<Point<2>> &polygon,
+                     MaterialPoints              &points,
+                     const BackgroundGrid        &grid,
+                     const Q1CellKernel          &kernel,
+                     const Tensor<1, 2>          &body_force,
+                     const std::vector<Point<2>> &curve_points,
+                     const std::string           &where)
+  {
+    AssertThrow(polygon.size() >= 3,
+                ExcMessage(where + ": an excavation is a polygon of at "
+                                   "least 3 vertices 'x0, y0; x1, y1; ...'."));
+    // Within a cell of the polygon: inside it, or nearer than h to an edge.
+    const double h        = grid.min_cell_size();
+    const auto   distance = [&](const Point<2> &x) {
+      double             d = std::numeric_limits<double>::infinity();
+      const unsigned int n = polygon.size();
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const Point<2>    &a = polygon[i], &b = polygon[(i + 1) % n];
+          const Tensor<1, 2> e = b - a;
+          const double       f =
+            std::clamp((x - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
+          d = std::min(d, x.distance(a + f * e));
+        }
+      return d;
+    };
+    for (const Point<2> &x : curve_points)
+      if (inside(polygon, x) || distance(x) < h)
+        {
+          std::ostringstream message;
+          message << where << ": the excavated region reaches the "
+                  << "tracked point (" << x
+                  << ") of a boundary curve or the probe. The face of a cut "
+                     "does not become a boundary curve yet: keep the curves "
+                     "and the probe more than a cell away from the region "
+                     "(the cut's face is then the edge of its points).";
+          AssertThrow(false, ExcMessage(message.str()));
+        }
+
+    std::vector<CellMoments>    moments;
+    const types::particle_index n = points.remove_points(
+      [&](const Point<2> &x) { return inside(polygon, x); }, moments);
+
+    forces.clear();
+    Vector<double> internal(8), external(8);
+    for (const auto &cell : grid.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const CellMoments &m = moments[cell->active_cell_index()];
+          if (m.v == 0)
+            continue;
+          internal = 0;
+          external = 0;
+          kernel.add_internal_force(m, internal);
+          kernel.add_body_force(m, body_force, external);
+          CellForces                           released;
+          std::vector<types::global_dof_index> dofs(8);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < 8; ++i)
+            {
+              released.dofs[i]   = dofs[i];
+              released.forces[i] = external[i] - internal[i];
+            }
+          forces.push_back(released);
+        }
+    return n;
+  }
+
+
+
+  void
+  Excavation::add_released_forces(const double                     factor,
+                                  const AffineConstraints<double> &constraints,
+                                  TrilinosWrappers::MPI::Vector   &rhs) const
+  {
+    if (factor == 0)
+      return;
+    Vector<double>                       local(8);
+    std::vector<types::global_dof_index> dofs(8);
+    for (const CellForces &cell : forces)
+      {
+        for (unsigned int i = 0; i < 8; ++i)
+          {
+            local[i] = factor * cell.forces[i];
+            dofs[i]  = cell.dofs[i];
+          }
+        constraints.distribute_local_to_global(local, dofs, rhs);
+      }
+  }
+} // namespace bsmpm
