@@ -335,11 +335,20 @@ namespace bsmpm
   {
     if (path.rfind("Output/", 0) == 0)
       return;
+    const std::string refused =
+      "--set \"" + path +
+      "=...\" with --resume: a resumed run keeps the parameters of its "
+      "checkpoint; only those of Output may change, and in a scene in "
+      "stages the number of stages and the stages after the checkpoint's";
+    AssertThrow(path.rfind("Stages/", 0) == 0, ExcMessage(refused + "."));
     // The stage that the checkpoint's step belongs to (the parameters
     // are still the checkpoint's): that stage and those before it have
     // run, the ones after it may change.
     LoadStages stages;
     stages.parse_parameters(prm, false);
+    AssertThrow(stages.staged(),
+                ExcMessage(refused + "; the checkpoint's scene has one "
+                                     "stage (Loading/Load steps)."));
     fs::path where = fs::path(directory).lexically_normal();
     if (!where.has_filename())
       where = where.parent_path();
@@ -350,19 +359,10 @@ namespace bsmpm
     unsigned int      k    = 0;
     if (path.rfind(head, 0) == 0)
       k = std::atoi(path.c_str() + head.size());
-    AssertThrow(path != "Stages/Number of stages" || stages.staged(),
-                ExcMessage("--set \"" + path +
-                           "=...\" with --resume: the checkpoint's scene "
-                           "has one stage (Loading/Load steps); a scene "
-                           "in stages declares them from its start."));
     AssertThrow(k > reached || path == "Stages/Number of stages",
-                ExcMessage("--set \"" + path +
-                           "=...\" with --resume: a resumed run keeps the "
-                           "parameters of its checkpoint; only those of "
-                           "Output, the number of stages and the stages "
-                           "after the checkpoint's (stage " +
-                           std::to_string(reached) + ", step " +
-                           std::to_string(step) + ") may change."));
+                ExcMessage(refused + ": the checkpoint (step " +
+                           std::to_string(step) + ") is in stage " +
+                           std::to_string(reached) + "."));
   }
 
 
