@@ -14,14 +14,17 @@ directory, field, png = sys.argv[1], sys.argv[2], sys.argv[3]
 title = sys.argv[4] if len(sys.argv) > 4 else field
 
 points = simple.PVDReader(FileName=os.path.join(directory, "points.pvd"))
-curves = simple.PVDReader(FileName=os.path.join(directory, "curves.pvd"))
 last = points.TimestepValues[-1] if hasattr(points.TimestepValues, "__len__") \
     else points.TimestepValues
-# The initial curves: the same series held at time 0.
-first = simple.ForceTime(Input=simple.PVDReader(
-    FileName=os.path.join(directory, "curves.pvd")))
-first.ForcedTime = 0.0
-first.IgnorePipelineTime = 1
+# A scene without boundary curves writes no curves.pvd.
+has_curves = os.path.exists(os.path.join(directory, "curves.pvd"))
+if has_curves:
+    curves = simple.PVDReader(FileName=os.path.join(directory, "curves.pvd"))
+    # The initial curves: the same series held at time 0.
+    first = simple.ForceTime(Input=simple.PVDReader(
+        FileName=os.path.join(directory, "curves.pvd")))
+    first.ForcedTime = 0.0
+    first.IgnorePipelineTime = 1
 
 view = simple.CreateRenderView()
 view.ViewSize = [1400, 900]
@@ -45,16 +48,17 @@ bar.LabelColor = [0, 0, 0]
 shown.SetScalarBarVisibility(view, True)
 
 # The initial boundary (grey) and the deformed one (black).
-initial = simple.Show(first, view)
-initial.SetRepresentationType("Wireframe")
-initial.AmbientColor = initial.DiffuseColor = [0.6, 0.6, 0.6]
-initial.LineWidth = 2
-initial.ColorArrayName = [None, ""]
-deformed = simple.Show(curves, view)
-deformed.SetRepresentationType("Wireframe")
-deformed.AmbientColor = deformed.DiffuseColor = [0, 0, 0]
-deformed.LineWidth = 3
-deformed.ColorArrayName = [None, ""]
+if has_curves:
+    initial = simple.Show(first, view)
+    initial.SetRepresentationType("Wireframe")
+    initial.AmbientColor = initial.DiffuseColor = [0.6, 0.6, 0.6]
+    initial.LineWidth = 2
+    initial.ColorArrayName = [None, ""]
+    deformed = simple.Show(curves, view)
+    deformed.SetRepresentationType("Wireframe")
+    deformed.AmbientColor = deformed.DiffuseColor = [0, 0, 0]
+    deformed.LineWidth = 3
+    deformed.ColorArrayName = [None, ""]
 
 view.InteractionMode = "2D"
 simple.ResetCamera(view)
