@@ -150,7 +150,6 @@ namespace bsmpm
     read_scene_state() const;
 
   private:
-    std::set<unsigned int> stage_ends;
     MPI_Comm     communicator;
     unsigned int interval = 0;
     std::string  output_directory;
@@ -159,6 +158,8 @@ namespace bsmpm
     /** Name of the checkpoint this run wrote last (or resumed from): kept
      * when the next one is written, every other one removed. */
     std::string previous;
+    /** The last steps of the stages (keep_stage_ends()). */
+    std::set<unsigned int> stage_ends;
   };
 } // namespace bsmpm
 
