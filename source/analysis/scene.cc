@@ -134,11 +134,7 @@ namespace bsmpm
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     checkpoint.parse_parameters(prm);
-    std::set<unsigned int> stage_ends;
-    for (unsigned int n = 1; stages.staged() && n < stages.n_load_steps(); ++n)
-      if (stages.step(n + 1).first_of_stage)
-        stage_ends.insert(n);
-    checkpoint.keep_stage_ends(stage_ends);
+    checkpoint.keep_stage_ends(stages.stage_ends());
     verification.parse_parameters(prm);
     exact_solution =
       ExactSolution::create(prm, material, gravity, this->finite_strain());

@@ -351,32 +351,37 @@ namespace bsmpm
             return theta <= annulus.end_angle - annulus.start_angle;
           }
         case Shape::polygon:
-          {
-            // On an edge counts as inside (the closed region) ...
-            const unsigned int n = vertices.size();
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                const Point<2>     a = vertices[i], b = vertices[(i + 1) % n];
-                const Tensor<1, 2> e = b - a, d = p - a;
-                const double       t = (d * e) / (e * e);
-                if (t >= 0 && t <= 1 &&
-                    std::abs(d[0] * e[1] - d[1] * e[0]) <=
-                      1e-12 * e.norm_square())
-                  return true;
-              }
-            // ... elsewhere the crossing number of a ray in +x decides.
-            bool inside = false;
-            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
-              {
-                const Point<2> &a = vertices[i], &b = vertices[j];
-                if ((a[1] > p[1]) != (b[1] > p[1]) &&
-                    p[0] < a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]))
-                  inside = !inside;
-              }
-            return inside;
-          }
+          return polygon_contains(vertices, p);
       }
     return false;
+  }
+
+
+
+  bool
+  polygon_contains(const std::vector<Point<2>> &vertices, const Point<2> &p)
+  {
+    // On an edge counts as inside (the closed region) ...
+    const unsigned int n = vertices.size();
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Point<2>     a = vertices[i], b = vertices[(i + 1) % n];
+        const Tensor<1, 2> e = b - a, d = p - a;
+        const double       t = (d * e) / (e * e);
+        if (t >= 0 && t <= 1 &&
+            std::abs(d[0] * e[1] - d[1] * e[0]) <= 1e-12 * e.norm_square())
+          return true;
+      }
+    // ... elsewhere the crossing number of a ray in +x decides.
+    bool inside = false;
+    for (unsigned int i = 0, j = n - 1; i < n; j = i++)
+      {
+        const Point<2> &a = vertices[i], &b = vertices[j];
+        if ((a[1] > p[1]) != (b[1] > p[1]) &&
+            p[0] < a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]))
+          inside = !inside;
+      }
+    return inside;
   }
 
 

@@ -152,6 +152,18 @@ namespace bsmpm
 
 
 
+  std::set<unsigned int>
+  LoadStages::stage_ends() const
+  {
+    std::set<unsigned int> ends;
+    unsigned int           n = 0;
+    for (unsigned int k = 0; k + 1 < stages.size(); ++k)
+      ends.insert(n += stages[k].load_steps);
+    return ends;
+  }
+
+
+
   LoadStages::Step
   LoadStages::step(const unsigned int n) const
   {

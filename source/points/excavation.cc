@@ -1,6 +1,6 @@
 #include <deal.II/base/mpi.h>
 
-#include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/geometry/body_region.h>
 #include <bsmpm/points/excavation.h>
 #include <bsmpm/points/material_points.h>
 
@@ -10,23 +10,6 @@
 
 namespace bsmpm
 {
-  bool
-  Excavation::inside(const std::vector<Point<2>> &polygon, const Point<2> &x)
-  {
-    bool               in = false;
-    const unsigned int n  = polygon.size();
-    for (unsigned int i = 0, j = n - 1; i < n; j = i++)
-      {
-        const Point<2> &a = polygon[i], &b = polygon[j];
-        if ((a[1] > x[1]) != (b[1] > x[1]) &&
-            x[0] < a[0] + (x[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]))
-          in = !in;
-      }
-    return in;
-  }
-
-
-
   types::particle_index
   Excavation::remove(const std::vector<Point<2>> &polygon,
                      MaterialPoints              &points,
@@ -55,7 +38,7 @@ namespace bsmpm
       return d;
     };
     for (const Point<2> &x : curve_points)
-      if (inside(polygon, x) || distance(x) < h)
+      if (polygon_contains(polygon, x) || distance(x) < h)
         {
           std::ostringstream message;
           message << where << ": the excavated region reaches the "
@@ -69,7 +52,7 @@ namespace bsmpm
 
     std::vector<CellMoments>    moments;
     const types::particle_index n = points.remove_points(
-      [&](const Point<2> &x) { return inside(polygon, x); }, moments);
+      [&](const Point<2> &x) { return polygon_contains(polygon, x); }, moments);
 
     forces.clear();
     Vector<double> internal(8), external(8);

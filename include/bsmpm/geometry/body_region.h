@@ -152,6 +152,11 @@ namespace bsmpm
     /** Polygon: its vertices, counter-clockwise. */
     std::vector<Point<2>> vertices;
   };
+
+  /** Whether @p p lies in the closed polygon @p vertices (a point on an
+   * edge counts as inside). */
+  bool
+  polygon_contains(const std::vector<Point<2>> &vertices, const Point<2> &p);
 } // namespace bsmpm
 
 #endif

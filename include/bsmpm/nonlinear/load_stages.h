@@ -6,6 +6,7 @@
 
 #include <bsmpm/base/load_level.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,11 @@ namespace bsmpm
     /** Load steps of all stages. */
     unsigned int
     n_load_steps() const;
+
+    /** The last step of every stage but the last (none in the short
+     * form). */
+    std::set<unsigned int>
+    stage_ends() const;
 
     /** Load step @p n (from 1) of the whole run. */
     Step

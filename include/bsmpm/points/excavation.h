@@ -74,10 +74,6 @@ namespace bsmpm
                         const AffineConstraints<double> &constraints,
                         TrilinosWrappers::MPI::Vector   &rhs) const;
 
-    /** Whether @p x lies inside @p polygon (crossing number; a point on an
-     * edge counts as inside on one side only). */
-    static bool
-    inside(const std::vector<Point<2>> &polygon, const Point<2> &x);
 
   private:
     /** A locally owned cell that lost points: its DoFs and the forces on
