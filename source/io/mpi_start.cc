@@ -129,6 +129,15 @@ namespace bsmpm
   start_mpi_quickly()
   {
 #ifdef OMPI_MAJOR_VERSION
+    // Checkpoints are written by MPI-IO. Open MPI's shared-memory "shared
+    // file pointer" component keeps a named POSIX semaphore per file name
+    // (/dev/shm/sem.OMPIO_<file name>) that a process killed while writing
+    // leaves taken: every later MPI_File_open of a file of that name on the
+    // machine then waits for ever, for any user's run. deal.II writes at
+    // explicit offsets and needs no shared file pointer; the other
+    // components hold no such lock.
+    setenv("OMPI_MCA_sharedfp", "^sm", /*overwrite=*/0);
+
     const char *size  = std::getenv("OMPI_COMM_WORLD_SIZE");
     const char *local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
     if (size != nullptr)

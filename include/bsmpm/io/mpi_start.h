@@ -18,6 +18,12 @@ namespace bsmpm
    * less at np = 2 there, doc/benchmarks.md). Under another launcher, and
    * with another MPI, nothing is set.
    *
+   * Every run started by Open MPI leaves out its shared-memory shared file
+   * pointer (OMPI_MCA_sharedfp = ^sm): its lock, left taken by a run killed
+   * while writing a checkpoint, would make every later checkpoint of every
+   * run on the machine wait for ever (the reason in
+   * source/io/mpi_start.cc).
+   *
    * A serial run also gets a session directory of its own
    * (OMPI_MCA_orte_top_session_dir = <tmp>/bsmpm-mpi.<host>.<uid>/<pid>):
    * Open MPI gives every isolated singleton the same one, which each
