@@ -167,11 +167,16 @@ namespace bsmpm
           prm.declare_entry(name,
                             name == "Condition" ? "free" : "",
                             Patterns::Anything(),
-                            "'[i-j:] kind [arguments]': free; pressure <p>; "
-                            "traction <tx>; <ty> (expressions of x, y); "
-                            "exact traction; fixed; roller; displacement "
-                            "exact; displacement <ux>; <uy>; normal "
-                            "displacement exact; normal displacement <un>. "
+                            "'[i-j:] kind [arguments]': free; pressure <p> "
+                            "(a number or an expression of t); traction "
+                            "<tx>; <ty> (expressions of x, y and t); exact "
+                            "traction; fixed; roller; displacement exact; "
+                            "displacement <ux>; <uy>; normal displacement "
+                            "exact; normal displacement <un> (expressions of "
+                            "x, y). Loads and displacements are scaled by "
+                            "the load factor t, except a load whose "
+                            "expression uses t: it is the load at t itself "
+                            "(a load of one stage only, doc/stages.md). "
                             "i-j restricts it to the segments between points "
                             "i and j of the chain, its points numbered from 0 "
                             "along the chain's direction (segment k joins "
@@ -377,6 +382,18 @@ namespace bsmpm
         if (condition.is_load())
           return true;
     return false;
+  }
+
+
+
+  bool
+  BoundaryCurves::loads_proportional() const
+  {
+    for (const auto &curve : curves)
+      for (const auto &condition : curve.conditions)
+        if (condition.is_load() && condition.expression_of_t)
+          return false;
+    return true;
   }
 
 

@@ -4,6 +4,7 @@
 #include <bsmpm/boundary/curve_condition.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -11,9 +12,33 @@ namespace bsmpm
 {
   namespace
   {
-    /** A parser of @p n_components expressions of x, y (separated by ';'),
-     * evaluated once so that syntax errors show here; @p message starts the
-     * error message. */
+    /** Whether @p expressions use the variable @p name (a name of its own,
+     * not a part of another name nor a function such as tan). */
+    bool
+    uses_variable(const std::string &expressions, const char name)
+    {
+      const auto is_name_character = [](const char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+      };
+      for (std::size_t i = 0; i < expressions.size(); ++i)
+        {
+          if (expressions[i] != name ||
+              (i > 0 && is_name_character(expressions[i - 1])) ||
+              (i + 1 < expressions.size() &&
+               is_name_character(expressions[i + 1])))
+            continue;
+          const std::size_t next = expressions.find_first_not_of(' ', i + 1);
+          if (next == std::string::npos || expressions[next] != '(')
+            return true;
+        }
+      return false;
+    }
+
+
+
+    /** A parser of @p n_components expressions of x, y and t (separated by
+     * ';'), evaluated once so that syntax errors show here; @p message
+     * starts the error message. */
     std::shared_ptr<FunctionParser<2>>
     parse_function(const std::string &expressions,
                    const unsigned int n_components,
@@ -23,7 +48,10 @@ namespace bsmpm
       std::string problem;
       try
         {
-          function->initialize("x,y", expressions, {{"pi", numbers::PI}});
+          function->initialize("x,y,t",
+                               expressions,
+                               {{"pi", numbers::PI}},
+                               /*time_dependent=*/true);
           // The parser reports syntax errors only when it first evaluates,
           // which would be in a loop over one process' cells: evaluate once
           // here, on every process alike.
@@ -104,18 +132,41 @@ namespace bsmpm
     else if (kind == "pressure")
       {
         condition.kind = Kind::pressure;
-        try
+        AssertThrow(!arguments.empty() && !uses_variable(arguments, 'x') &&
+                      !uses_variable(arguments, 'y'),
+                    ExcMessage(where +
+                               ": 'pressure' needs a number or an expression "
+                               "of the load factor t (one pressure along its "
+                               "stretch; 'traction' varies along it), got '" +
+                               arguments + "'."));
+        if (uses_variable(arguments, 't'))
           {
-            condition.pressure = Utilities::string_to_double(arguments);
+            condition.function        = parse_function(arguments,
+                                                1,
+                                                where +
+                                                  ": 'pressure' needs a "
+                                                         "number or an expression "
+                                                         "of t, got '" +
+                                                  arguments + "'");
+            condition.expression_of_t = true;
           }
-        catch (...)
+        else
           {
-            AssertThrow(false,
-                        ExcMessage(where +
-                                   ": 'pressure' needs a number, got '" +
-                                   arguments + "'."));
+            try
+              {
+                condition.pressure = Utilities::string_to_double(arguments);
+              }
+            catch (...)
+              {
+                AssertThrow(false,
+                            ExcMessage(where +
+                                       ": 'pressure' needs a number or an "
+                                       "expression of the load factor t, "
+                                       "got '" +
+                                       arguments + "'."));
+              }
+            ParameterTools::require_finite(condition.pressure, where);
           }
-        ParameterTools::require_finite(condition.pressure, where);
       }
     else if ((kind == "traction" || kind == "displacement") &&
              arguments != "exact")
@@ -129,6 +180,7 @@ namespace bsmpm
                            "' needs two expressions of x and y separated by "
                            "';', got '" +
                            arguments + "'");
+        condition.expression_of_t = uses_variable(arguments, 't');
       }
     else if (kind == "normal" &&
              arguments.substr(0, arguments.find(' ')) == "displacement")
@@ -150,6 +202,7 @@ namespace bsmpm
                              ": 'normal displacement' needs one expression "
                              "of x and y, got '" +
                              value + "'");
+        condition.expression_of_t = uses_variable(value, 't');
       }
     else if (text == "exact traction")
       condition.kind = Kind::exact_traction;
@@ -167,7 +220,42 @@ namespace bsmpm
                              "displacement exact, displacement <ux>; <uy>, "
                              "normal displacement exact, normal displacement "
                              "<un>."));
+    AssertThrow(
+      !(condition.expression_of_t && condition.prescribes_displacement()),
+      ExcMessage(where + ": a prescribed displacement cannot use the load "
+                         "factor t; it is the displacement at load factor "
+                         "1, scaled by t. A rigid body's Displacement can "
+                         "be an expression of t."));
     return condition;
+  }
+
+
+
+  Tensor<1, 2>
+  CurveCondition::load_traction(const Point<2>     &x,
+                                const Tensor<1, 2> &normal,
+                                const double        t,
+                                std::string        &problem) const
+  {
+    Assert(kind == Kind::pressure || kind == Kind::traction,
+           ExcInternalError());
+    if (kind == Kind::pressure)
+      return -pressure_at(t) * normal;
+    if (!expression_of_t)
+      return t * function_value(x, problem);
+    function->set_time(t);
+    return function_value(x, problem);
+  }
+
+
+
+  double
+  CurveCondition::pressure_at(const double t) const
+  {
+    if (!expression_of_t)
+      return t * pressure;
+    function->set_time(t);
+    return function->value(Point<2>(), 0);
   }
 
 

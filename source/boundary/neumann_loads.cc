@@ -73,22 +73,10 @@ namespace bsmpm
             const double        dl = values.JxW(q);
             const Tensor<1, 2> &n  = values.normal(q);
 
-            Tensor<1, 2> t;
-            switch (condition->kind)
-              {
-                case CurveCondition::Kind::pressure:
-                  t = -condition->pressure * n;
-                  break;
-                case CurveCondition::Kind::traction:
-                  t = condition->function_value(x, problem);
-                  break;
-                case CurveCondition::Kind::exact_traction:
-                  t = exact->traction(x, n);
-                  break;
-                default:
-                  break;
-              }
-            t *= load_factor;
+            const Tensor<1, 2> t =
+              condition->kind == CurveCondition::Kind::exact_traction ?
+                load_factor * exact->traction(x, n) :
+                condition->load_traction(x, n, load_factor, problem);
             points.push_back({x, t, dl});
 
             const Point<2> &st = values.local_coordinates(q);
@@ -100,7 +88,7 @@ namespace bsmpm
                 const Tensor<1, 2> &tangent = values.tangent(q);
                 const double        sign =
                   n[0] * tangent[1] - n[1] * tangent[0] > 0 ? 1. : -1.;
-                const double p = load_factor * condition->pressure * dl;
+                const double p = condition->pressure_at(load_factor) * dl;
                 for (unsigned int j = 0; j < Q1CellKernel::dofs_per_cell; ++j)
                   {
                     // (grad N_j) t, then R of it: R (a, b) = sign (b, -a).

@@ -60,13 +60,15 @@ namespace bsmpm
                         ConstitutiveUpdate::Kinematics::small_strain &&
                       !parts.curves.prescribe_displacement() &&
                       parts.contact == nullptr && !resuming &&
-                      parts.stages.proportional(),
+                      parts.stages.proportional() &&
+                      parts.curves.loads_proportional(),
                     ExcMessage(
                       "Loading/Control = displacement needs a nonlinear "
                       "material in small strain, no prescribed "
                       "displacement on the boundary curves, no rigid "
-                      "bodies, one stage without an initial stress (loads "
-                      "that grow together from zero) and no resumed "
+                      "bodies, one stage without an initial stress and no "
+                      "load given as an expression of t (loads that grow "
+                      "together from zero) and no resumed "
                       "checkpoint (the load factor is not in it)."));
         parts.displacement_control.locate(parts.grid);
         pcout << "displacement control at the vertex "

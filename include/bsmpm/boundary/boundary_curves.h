@@ -122,6 +122,11 @@ namespace bsmpm
     bool
     has_loads() const;
 
+    /** Whether every load is its value times the load factor (none is
+     * given as an expression of t): what displacement control needs. */
+    bool
+    loads_proportional() const;
+
     /** Whether any curve prescribes a displacement (a displacement-
      * controlled run: the load factor scales that displacement). */
     bool

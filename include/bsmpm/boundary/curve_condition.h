@@ -26,8 +26,9 @@ namespace bsmpm
    * 0 .. j - 1 (check_range()). The kinds:
    * - free
    * - pressure <p>: p in Pa on the current curve, along the inward normal
-   *   (a follower load);
-   * - traction <tx>; <ty>: a traction vector in Pa, as expressions of x, y;
+   *   (a follower load); a number or an expression of t;
+   * - traction <tx>; <ty>: a traction vector in Pa, as expressions of x, y
+   *   and t;
    * - exact traction: sigma(x) n from the scene's exact solution;
    * - fixed: u = 0; roller: u . n = 0 (n the normal of the current curve);
    * - displacement exact: u = u_exact(x); displacement <ux>; <uy>: u given
@@ -37,7 +38,11 @@ namespace bsmpm
    *   component free (a smooth rigid footing pushed into the body has
    *   un < 0); normal displacement exact: u . n = u_exact(x) . n.
    * Loads and prescribed displacements are scaled by the load factor of the
-   * step. Supports are imposed by the curve's Dirichlet method (implicit
+   * step, t, except a load whose expression uses t: that expression is the
+   * load at t itself (as a rigid body's Displacement and Force are), so
+   * that loads of a staged scene can come on, stay and go in different
+   * stages (LoadStages). Prescribed displacements cannot use t yet.
+   * Supports are imposed by the curve's Dirichlet method (implicit
    * boundary method or Nitsche's method).
    */
   struct CurveCondition
@@ -57,12 +62,19 @@ namespace bsmpm
     Kind         kind          = Kind::free;
     unsigned int first_segment = 0;
     unsigned int end_segment   = numbers::invalid_unsigned_int;
-    double       pressure      = 0;
+    /** The pressure of "pressure <p>" given as a number. */
+    double pressure = 0;
     /** Traction of "traction", displacement of "displacement <ux>; <uy>"
-     * (two components) or normal displacement of "normal displacement <un>"
-     * (one component); nullptr for "displacement exact" and "normal
-     * displacement exact". */
+     * (two components), normal displacement of "normal displacement <un>"
+     * or pressure of "pressure <p>" given as an expression of t (one
+     * component); nullptr for "displacement exact", "normal displacement
+     * exact" and a pressure given as a number. Expressions of x, y and the
+     * load factor t, time dependent in deal.II's sense (t is the parser's
+     * time). */
     std::shared_ptr<FunctionParser<2>> function;
+    /** Whether the load's expression uses t: it is then the load at the
+     * load factor t, not a load to be multiplied by it. */
+    bool expression_of_t = false;
     /** The parameter that gave the condition, for messages. */
     std::string where;
 
@@ -76,6 +88,23 @@ namespace bsmpm
      * <un>". */
     double
     scalar_function_value(const Point<2> &x, std::string &problem) const;
+
+    /**
+     * The traction of a load ("pressure", "traction") at the point @p x of
+     * the curve, whose outward normal is @p normal there, at the load
+     * factor @p t: t times the given load, or the given expression of t at
+     * t (see #expression_of_t). Problems as for function_value().
+     */
+    Tensor<1, 2>
+    load_traction(const Point<2>     &x,
+                  const Tensor<1, 2> &normal,
+                  const double        t,
+                  std::string        &problem) const;
+
+    /** The pressure of a "pressure" condition at the load factor @p t, by
+     * the rule of load_traction(). */
+    double
+    pressure_at(const double t) const;
 
     /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
     static CurveCondition
