@@ -5,6 +5,9 @@
   prm/retaining-wall-active.prm against its motion away from the clay, at
   h = 0.5, 0.25 and 0.125 (the at-rest thrust of the own-weight stage at
   zero), with the wedge's and Rankine's active thrusts;
+- stages_wall_passive.png: the same for the wall of
+  prm/retaining-wall-passive.prm pushed into the clay, with Rankine's
+  passive thrust;
 - stages_footing.png: the bearing pressure of the strip footing against its
   settlement in the footing stage of prm/strip-footing-after-weight.prm
   (settlement counted from that stage's start), with the weightless
@@ -66,6 +69,29 @@ with tempfile.TemporaryDirectory() as tmp:
     plt.legend()
     plt.tight_layout()
     plt.savefig(os.path.join(args.output, "stages_wall.png"), dpi=120)
+
+    # The wall pushed into the clay (finite strain, smooth base).
+    plt.figure(figsize=(6, 4))
+    for h, n in [(0.5, 21), (0.25, 41), (0.125, 81)]:
+        s = run("retaining-wall-passive.prm",
+                [f"Background grid/Cell size={h}",
+                 f"Boundary curves/Curve 1/Number of points={n}"],
+                os.path.join(tmp, f"passive-{h}"))
+        at_rest = [x for x in s["steps"] if x["stage"] == 1][-1]
+        moving = [x for x in s["steps"] if x["stage"] == 2]
+        u = [0] + [-x["quantities"]["rigid_body_1_displacement_x"]
+                   for x in moving]
+        f = [at_rest["quantities"]["rigid_body_1_force_x"]] + \
+            [x["quantities"]["rigid_body_1_force_x"] for x in moving]
+        plt.plot(u, f, marker=".", label=f"h = {h} m")
+    plt.axhline(320.7, color="k", ls="--",
+                label=r"Rankine: $\gamma H^2/2 + 2 c_u H$")
+    plt.xlabel("wall pushed into the clay (m)")
+    plt.ylabel("thrust on the wall (kN/m)")
+    plt.legend()
+    plt.tight_layout()
+    plt.savefig(os.path.join(args.output, "stages_wall_passive.png"),
+                dpi=120)
 
     # The footing.
     plt.figure(figsize=(6, 4))
