@@ -535,7 +535,7 @@ namespace bsmpm
             RunSummary::Step record;
             record.number = step;
             record.stage  = path.stage;
-            if (displacement_control.enabled())
+            if (load_stepper->controls_displacement(path.stage))
               load_stepper->advance_under_displacement_control(step, record);
             else
               load_stepper->advance(step, path.from, path.to, record);

@@ -356,6 +356,7 @@ namespace bsmpm
 
   void
   SystemAssembly::reference_loads(const std::vector<CellMoments> &moments,
+                                  const LoadLevel                &slope,
                                   TrilinosWrappers::MPI::Vector  &loads)
   {
     AssertThrow(!parts.finite_strain,
@@ -363,7 +364,23 @@ namespace bsmpm
                            "in finite strain the loads follow the body."));
     TimerOutput::Scope t(timer, "assembly");
     loads.reinit(system_rhs, false);
-    const Tensor<1, 2> body_force = parts.material.density() * parts.gravity;
+    // The tractions at load factor 1 (their resultant is then the unit
+    // one), scaled by the stage's growth of the loads.
+    if (parts.curves.has_loads())
+      {
+        parts.neumann_loads.assemble(parts.curves,
+                                     parts.grid,
+                                     *cell_kernel,
+                                     parts.exact_solution,
+                                     1.,
+                                     system_constraints,
+                                     loads,
+                                     nullptr);
+        loads.compress(VectorOperation::add);
+        loads *= slope.loads;
+      }
+    const Tensor<1, 2> body_force =
+      slope.gravity * parts.material.density() * parts.gravity;
     if (body_force.norm() > 0)
       {
         constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
@@ -385,15 +402,6 @@ namespace bsmpm
                                                           loads);
           }
       }
-    if (parts.curves.has_loads())
-      parts.neumann_loads.assemble(parts.curves,
-                                   parts.grid,
-                                   *cell_kernel,
-                                   parts.exact_solution,
-                                   1.,
-                                   system_constraints,
-                                   loads,
-                                   nullptr);
     loads.compress(VectorOperation::add);
   }
 

@@ -21,8 +21,9 @@ namespace bsmpm
       "a displacement component that grows by 'Displacement increment' per "
       "step (Batoz and Dhatt 1979), so that a run follows the load past a "
       "peak or along a plateau; summary.json gives the load factor reached "
-      "per step. Small strain, nonlinear material, no prescribed "
-      "displacements, no checkpoints (doc/limit-loads.md).");
+      "per step. In a staged scene it controls the last stage, the stages "
+      "before it load controlled. Small strain, nonlinear material, no "
+      "prescribed displacements, no checkpoints (doc/limit-loads.md).");
     prm.declare_entry("Control point",
                       "0, 0",
                       ParameterTools::point_pattern(),

@@ -55,35 +55,43 @@ namespace bsmpm
     if (parts.displacement_control.enabled())
       {
         // What the bordered Newton iterations do not handle is refused here.
-        AssertThrow(nonlinear &&
-                      parts.constitutive_update->kinematics() ==
-                        ConstitutiveUpdate::Kinematics::small_strain &&
-                      !parts.curves.prescribe_displacement() &&
-                      parts.contact == nullptr && !resuming &&
-                      parts.stages.proportional() &&
-                      parts.curves.loads_proportional(),
-                    ExcMessage(
-                      "Loading/Control = displacement needs a nonlinear "
-                      "material in small strain, no prescribed "
-                      "displacement on the boundary curves, no rigid "
-                      "bodies, one stage without an initial stress and no "
-                      "load given as an expression of t (loads that grow "
-                      "together from zero) and no resumed "
-                      "checkpoint (the load factor is not in it)."));
+        AssertThrow(
+          nonlinear &&
+            parts.constitutive_update->kinematics() ==
+              ConstitutiveUpdate::Kinematics::small_strain &&
+            !parts.curves.prescribe_displacement() &&
+            parts.contact == nullptr && !resuming &&
+            parts.stages.stage(parts.stages.n_stages()).excavation.empty() &&
+            parts.curves.loads_proportional(),
+          ExcMessage("Loading/Control = displacement needs a nonlinear "
+                     "material in small strain, no prescribed "
+                     "displacement on the boundary curves, no rigid "
+                     "bodies, no load given as an expression of t, no "
+                     "excavation in the last stage (the stage it controls) "
+                     "and no resumed "
+                     "checkpoint (the load factor is not in it)."));
         parts.displacement_control.locate(parts.grid);
         pcout << "displacement control at the vertex "
               << parts.displacement_control.vertex() << ", "
               << parts.displacement_control.displacement_increment()
-              << " m per step\n";
+              << " m per step"
+              << (parts.stages.staged() ? " in the last stage" : "") << "\n";
       }
-    else
-      // A limit load needs a material that yields: contact or finite
-      // strain alone make the run nonlinear, but an elastic body has no
-      // strength, and a step it cannot take is a failure, not a limit load.
-      // Under a rigid body that the load factor moves, the run follows the
-      // mechanism (as under a prescribed displacement); under one held or
-      // force-controlled, the load factor scales loads.
-      begin_stage(1, may_yield);
+    // A limit load needs a material that yields: contact or finite strain
+    // alone make the run nonlinear, but an elastic body has no strength,
+    // and a step it cannot take is a failure, not a limit load. Under a
+    // rigid body that the load factor moves, the run follows the mechanism
+    // (as under a prescribed displacement); under one held or
+    // force-controlled, the load factor scales loads.
+    begin_stage(1, may_yield);
+  }
+
+
+
+  bool
+  LoadStepper::controls_displacement(const unsigned int k) const
+  {
+    return parts.displacement_control.enabled() && k == parts.stages.n_stages();
   }
 
 
@@ -92,11 +100,17 @@ namespace bsmpm
   LoadStepper::begin_stage(const unsigned int k, const bool may_yield)
   {
     stage_may_yield = may_yield;
+    stage           = k;
     // The predictions from the last increment belong to another load.
     if (k > 1)
       parts.increment_solver.forget_last_increment();
-    if (parts.displacement_control.enabled())
-      return;
+    if (controls_displacement(k))
+      {
+        // The stage's load factor is the bordered iterations' unknown,
+        // from the stage's start on.
+        controlled_load_factor = k - 1.;
+        return;
+      }
     // Under a prescribed displacement, or a rigid body that the load
     // factor moves, the stage follows the mechanism; a stage that leaves
     // them where they are (the ground's weight) has loads that can
@@ -275,7 +289,9 @@ namespace bsmpm
         const std::vector<CellMoments> &moments = prepare_increment(cuts);
         // The loads of load factor 1, then the system at the load factor
         // reached: the load increment is the Newton iterations' unknown.
-        assembly.reference_loads(moments, reference_loads);
+        assembly.reference_loads(moments,
+                                 parts.stages.slope(parts.stages.n_stages()),
+                                 reference_loads);
         if (parts.curves.has_loads())
           unit_traction_resultant =
             parts.neumann_loads.resultant(parts.grid.mpi_communicator());
@@ -482,7 +498,7 @@ namespace bsmpm
   {
     // Under displacement control the last assemble() had the load factor
     // of the step's start.
-    return parts.displacement_control.enabled() ?
+    return controls_displacement(stage) ?
              parts.stages.level(controlled_load_factor).loads *
                unit_traction_resultant :
              parts.neumann_loads.resultant(parts.grid.mpi_communicator());

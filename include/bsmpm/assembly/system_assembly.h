@@ -157,15 +157,17 @@ namespace bsmpm
              const std::vector<double>      &quality);
 
     /**
-     * The loads of load factor 1 (body force and tractions) with the
-     * constraints of the last make_constraints(), into @p loads: the
-     * derivative of the residual by the load factor, for displacement
+     * The loads' growth along the load path, @p slope (LoadStages::slope():
+     * the body force times its gravity, the tractions times its loads)
+     * with the constraints of the last make_constraints(), into @p loads:
+     * the derivative of the residual by the load factor, for displacement
      * control (small strain only). The traction resultant of
      * NeumannLoads is then that of load factor 1, until the next
      * assemble().
      */
     void
     reference_loads(const std::vector<CellMoments> &moments,
+                    const LoadLevel                &slope,
                     TrilinosWrappers::MPI::Vector  &loads);
 
     /**

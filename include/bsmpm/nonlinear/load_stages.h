@@ -90,12 +90,15 @@ namespace bsmpm
       return stages.size() > 1;
     }
 
-    /** Whether all loads grow together from zero (one stage, no initial
-     * stress): what displacement control scales. */
-    bool
-    proportional() const
+    /** How the multipliers grow along stage @p k, per unit of the load
+     * path: its end values less those it starts from (release: 0). What
+     * displacement control scales in the stage it controls, the last. */
+    LoadLevel
+    slope(const unsigned int k) const
     {
-      return stages.size() == 1 && start.gravity == 0;
+      const LoadLevel &before = k == 1 ? start : stages[k - 2].end;
+      const LoadLevel &after  = stages[k - 1].end;
+      return {after.gravity - before.gravity, after.loads - before.loads, 0.};
     }
 
     const Stage &

@@ -114,6 +114,12 @@ namespace bsmpm
       begin_stage(k, stage_may_yield);
     }
 
+    /** Whether stage @p k runs under displacement control
+     * (Loading/Control = displacement: the last stage; the stages before
+     * it are load controlled). */
+    bool
+    controls_displacement(const unsigned int k) const;
+
     /**
      * Takes the load from factor @p from to @p to: one increment, or more
      * where a nonlinear material's Newton iterations fail and the
@@ -210,6 +216,8 @@ namespace bsmpm
     /** Under displacement control: the load factor reached, the loads of
      * load factor 1 and their traction resultant. */
     double controlled_load_factor = 0;
+    /** The stage of the steps being taken (begin_stage()). */
+    unsigned int stage = 1;
     /** Whether the material may yield (initialize()). */
     bool                          stage_may_yield = false;
     TrilinosWrappers::MPI::Vector reference_loads;
