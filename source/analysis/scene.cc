@@ -277,8 +277,9 @@ namespace bsmpm
       LoadStepper::Phases{[this]() -> const std::vector<CellMoments> & {
                             return compute_cell_moments();
                           },
-                          [this](const unsigned int step, const double delta) {
-                            move_points(step, delta);
+                          [this](const unsigned int   step,
+                                 const LoadIncrement &increment) {
+                            move_points(step, increment);
                             update_curves(step);
                           }},
       timer,
@@ -324,14 +325,15 @@ namespace bsmpm
 
 
   void
-  Scene::move_points(const unsigned int step, const double delta)
+  Scene::move_points(const unsigned int   step,
+                     const LoadIncrement &load_increment)
   {
     TimerOutput::Scope t(timer, "update points");
     const bool         displaced =
       supports.mark_point_displacement_cells(grid, boundary_curves, band_cells);
     if (!boundary_curves.empty())
       points.set_rigid_increments(boundary_curves.rigid_support_increments(
-        points.n_tracked(), exact_solution.get(), delta));
+        points.n_tracked(), exact_solution.get(), load_increment));
     const auto report = points.move(
       assembly->kernel(),
       material,

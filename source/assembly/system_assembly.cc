@@ -195,12 +195,12 @@ namespace bsmpm
 
 
   double
-  SystemAssembly::fit_prescribed_displacement(const double increment_factor)
+  SystemAssembly::fit_prescribed_displacement(const LoadIncrement &increment)
   {
     TimerOutput::Scope t(timer, "prescribed displacement fit");
     has_prescribed = true;
     return fitting_method->fit_prescribed_displacement(support_context(),
-                                                       increment_factor,
+                                                       increment,
                                                        boundary_fit_matrix,
                                                        prescribed);
   }
@@ -222,7 +222,7 @@ namespace bsmpm
 
   void
   SystemAssembly::assemble(const LoadLevel                &level,
-                           const double                    increment_factor,
+                           const LoadIncrement            &increment,
                            const std::vector<CellMoments> &moments,
                            const std::vector<double>      &quality)
   {
@@ -328,9 +328,9 @@ namespace bsmpm
     // Before the system's own implicit boundary terms, whose band points
     // the implicit boundary keeps.
     if (!parts.reaction_curves.empty())
-      assemble_support_terms(increment_factor);
+      assemble_support_terms(increment);
     add_support_terms(
-      increment_factor, constraints, system_matrix, system_rhs, nullptr);
+      increment, constraints, system_matrix, system_rhs, nullptr);
     if (parts.curves.has_loads())
       {
         TimerOutput::Scope t(timer, "neumann loads");
@@ -408,7 +408,7 @@ namespace bsmpm
 
 
   void
-  SystemAssembly::assemble_support_terms(const double increment_factor)
+  SystemAssembly::assemble_support_terms(const LoadIncrement &increment)
   {
     TimerOutput::Scope               t(timer, "reactions");
     const std::vector<unsigned int> &support_curves = parts.reaction_curves;
@@ -436,7 +436,7 @@ namespace bsmpm
                                std::to_string(support_curves[c] + 1) + "."));
         support_matrices[c] = 0;
         support_rhs[c]      = 0;
-        add_support_terms(increment_factor,
+        add_support_terms(increment,
                           none,
                           support_matrices[c],
                           support_rhs[c],
@@ -450,7 +450,7 @@ namespace bsmpm
 
   void
   SystemAssembly::add_support_terms(
-    const double                     increment_factor,
+    const LoadIncrement             &increment,
     const AffineConstraints<double> &constraints,
     TrilinosWrappers::SparseMatrix  &matrix,
     TrilinosWrappers::MPI::Vector   &rhs,
@@ -464,7 +464,7 @@ namespace bsmpm
         {
           TimerOutput::Scope t(timer, method->name());
           method->assemble(context,
-                           increment_factor,
+                           increment,
                            prescribed_displacement(),
                            assembly_moments,
                            constraints,

@@ -173,10 +173,11 @@ namespace bsmpm
                             "traction; fixed; roller; displacement exact; "
                             "displacement <ux>; <uy>; normal displacement "
                             "exact; normal displacement <un> (expressions of "
-                            "x, y). Loads and displacements are scaled by "
-                            "the load factor t, except a load whose "
-                            "expression uses t: it is the load at t itself "
-                            "(a load of one stage only, doc/stages.md). "
+                            "x, y and t). Loads and displacements are scaled "
+                            "by the load factor t, except those whose "
+                            "expression uses t: it is the load or the "
+                            "displacement at t itself (of one stage only, "
+                            "doc/stages.md). "
                             "i-j restricts it to the segments between points "
                             "i and j of the chain, its points numbered from 0 "
                             "along the chain's direction (segment k joins "
@@ -314,7 +315,7 @@ namespace bsmpm
   std::vector<std::pair<bool, Tensor<1, 2>>>
   BoundaryCurves::rigid_support_increments(const unsigned int   n_slots,
                                            const ExactSolution *exact,
-                                           const double         factor) const
+                                           const LoadIncrement &increment) const
   {
     std::vector<std::pair<bool, Tensor<1, 2>>> increments(n_slots,
                                                           {false,
@@ -333,10 +334,14 @@ namespace bsmpm
                                      curve.spline->segment_parameters(n - 1)[1];
             const Tensor<1, 2> normal = curve.spline->outward_normal(u);
             const Point<2>    &x      = curve.positions[k];
-            const double       u_n    = condition->function ?
-                                          condition->function->value(x, 0) :
-                                          exact->displacement(x) * normal;
-            increments[curve.tracked_slots[k]] = {true, factor * u_n * normal};
+            std::string        unreported; // the supports' terms report it
+            const double       u_n =
+              condition->function ?
+                      condition->normal_displacement_increment(x,
+                                                         increment,
+                                                         unreported) :
+                      increment.share() * (exact->displacement(x) * normal);
+            increments[curve.tracked_slots[k]] = {true, u_n * normal};
           }
     return increments;
   }

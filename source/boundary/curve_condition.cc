@@ -177,7 +177,7 @@ namespace bsmpm
           parse_function(arguments,
                          2,
                          where + ": '" + kind +
-                           "' needs two expressions of x and y separated by "
+                           "' needs two expressions of x, y and t separated by "
                            "';', got '" +
                            arguments + "'");
         condition.expression_of_t = uses_variable(arguments, 't');
@@ -189,18 +189,18 @@ namespace bsmpm
         condition.kind = Kind::normal_displacement;
         const std::string value =
           Utilities::trim(arguments.substr(std::string("displacement").size()));
-        AssertThrow(!value.empty(),
-                    ExcMessage(where +
-                               ": 'normal displacement' needs a value (an "
-                               "expression of x and y, the displacement along "
-                               "the outward normal) or 'exact'."));
+        AssertThrow(
+          !value.empty(),
+          ExcMessage(where + ": 'normal displacement' needs a value (an "
+                             "expression of x, y and t, the displacement along "
+                             "the outward normal) or 'exact'."));
         if (value != "exact")
           condition.function =
             parse_function(value,
                            1,
                            where +
                              ": 'normal displacement' needs one expression "
-                             "of x and y, got '" +
+                             "of x, y and t, got '" +
                              value + "'");
         condition.expression_of_t = uses_variable(value, 't');
       }
@@ -220,12 +220,6 @@ namespace bsmpm
                              "displacement exact, displacement <ux>; <uy>, "
                              "normal displacement exact, normal displacement "
                              "<un>."));
-    AssertThrow(
-      !(condition.expression_of_t && condition.prescribes_displacement()),
-      ExcMessage(where + ": a prescribed displacement cannot use the load "
-                         "factor t; it is the displacement at load factor "
-                         "1, scaled by t. A rigid body's Displacement can "
-                         "be an expression of t."));
     return condition;
   }
 
@@ -256,6 +250,36 @@ namespace bsmpm
       return t * pressure;
     function->set_time(t);
     return function->value(Point<2>(), 0);
+  }
+
+
+
+  Tensor<1, 2>
+  CurveCondition::displacement_increment(const Point<2>      &x,
+                                         const LoadIncrement &increment,
+                                         std::string         &problem) const
+  {
+    if (!expression_of_t)
+      return increment.share() * function_value(x, problem);
+    function->set_time(increment.to);
+    const Tensor<1, 2> to = function_value(x, problem);
+    function->set_time(increment.from);
+    return to - function_value(x, problem);
+  }
+
+
+
+  double
+  CurveCondition::normal_displacement_increment(const Point<2>      &x,
+                                                const LoadIncrement &increment,
+                                                std::string &problem) const
+  {
+    if (!expression_of_t)
+      return increment.share() * scalar_function_value(x, problem);
+    function->set_time(increment.to);
+    const double to = scalar_function_value(x, problem);
+    function->set_time(increment.from);
+    return to - scalar_function_value(x, problem);
   }
 
 

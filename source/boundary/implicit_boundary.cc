@@ -229,7 +229,7 @@ namespace bsmpm
   void
   ImplicitBoundary::assemble(
     const Context                                    &context,
-    const double                                      increment_factor,
+    const LoadIncrement                              &increment,
     const LinearAlgebra::distributed::Vector<double> *prescribed,
     const std::vector<CellMoments>                   *moments,
     const AffineConstraints<double>                  &constraints,
@@ -242,8 +242,8 @@ namespace bsmpm
     // Gauss point and its band points, and differ only in the terms at a
     // band point (add_nearest_point_terms(), add_d_scaled_terms()).
     points.clear();
-    last_increment_factor = increment_factor;
-    last_exact            = context.exact_solution;
+    last_increment = increment;
+    last_exact     = context.exact_solution;
     std::string               problem;
     const Q1CellKernel       &kernel = context.kernel;
     const double              delta  = band_width(context.grid);
@@ -275,7 +275,7 @@ namespace bsmpm
                          q,
                          kernel,
                          imposes ? condition : nullptr,
-                         increment_factor,
+                         increment,
                          context.exact_solution,
                          frame);
           const Point<2> &c = values.position(q);
@@ -543,7 +543,7 @@ namespace bsmpm
                          q,
                          kernel,
                          imposes ? condition : nullptr,
-                         last_increment_factor,
+                         last_increment,
                          last_exact,
                          frame);
           // The state of the boundary as of the step's start.
@@ -635,7 +635,7 @@ namespace bsmpm
                                    const unsigned int      q,
                                    const Q1CellKernel     &kernel,
                                    const CurveCondition   *imposed,
-                                   const double            factor,
+                                   const LoadIncrement    &increment,
                                    const ExactSolution    *exact,
                                    BoundaryFrame          &frame)
   {
@@ -660,11 +660,11 @@ namespace bsmpm
     const BSplineCurve           &spline = *piece.curve->spline;
     const double                  tau    = 1e-6 * (piece.u_end - piece.u_begin);
     const Point<2> a = spline.value(u - tau), b = spline.value(u + tau);
-    frame.g     = factor * prescribed_value(*imposed, exact, c, outward);
-    frame.dg_dt = factor *
-                  (prescribed_value(*imposed, exact, b, outward) -
-                   prescribed_value(*imposed, exact, a, outward)) /
-                  ((b - a) * frame.tangent);
+    frame.g = prescribed_increment(*imposed, exact, c, outward, increment);
+    frame.dg_dt =
+      (prescribed_increment(*imposed, exact, b, outward, increment) -
+       prescribed_increment(*imposed, exact, a, outward, increment)) /
+      ((b - a) * frame.tangent);
   }
 
 
@@ -683,23 +683,28 @@ namespace bsmpm
 
 
   Tensor<1, 2>
-  ImplicitBoundary::prescribed_value(const CurveCondition &condition,
-                                     const ExactSolution  *exact,
-                                     const Point<2>       &x,
-                                     const Tensor<1, 2>   &outward_normal)
+  ImplicitBoundary::prescribed_increment(const CurveCondition &condition,
+                                         const ExactSolution  *exact,
+                                         const Point<2>       &x,
+                                         const Tensor<1, 2>   &outward_normal,
+                                         const LoadIncrement  &increment)
   {
     AssertThrow(condition.function || exact != nullptr,
                 ExcMessage("Boundary curves: '" + condition.kind_name() +
                            " exact' needs an exact solution in the 'Exact "
                            "solution' section."));
+    // Not finite values are reported by the callers, with the place.
+    std::string unreported;
     if (condition.kind == CurveCondition::Kind::normal_displacement)
-      return (condition.function ? condition.function->value(x, 0) :
-                                   exact->displacement(x) * outward_normal) *
+      return (condition.function ?
+                condition.normal_displacement_increment(x,
+                                                        increment,
+                                                        unreported) :
+                increment.share() * (exact->displacement(x) * outward_normal)) *
              outward_normal;
     if (condition.function)
-      return Tensor<1, 2>(
-        {condition.function->value(x, 0), condition.function->value(x, 1)});
-    return exact->displacement(x);
+      return condition.displacement_increment(x, increment, unreported);
+    return increment.share() * exact->displacement(x);
   }
 
 
@@ -707,7 +712,7 @@ namespace bsmpm
   double
   ImplicitBoundary::fit_prescribed_displacement(
     const Context                              &context,
-    const double                                factor,
+    const LoadIncrement                        &increment,
     TrilinosWrappers::SparseMatrix             &mass,
     LinearAlgebra::distributed::Vector<double> &prescribed) const
   {
@@ -758,11 +763,11 @@ namespace bsmpm
           {
             const double       ds = values.JxW(q);
             const Point<2>    &st = values.local_coordinates(q);
-            const Tensor<1, 2> ua =
-              factor * prescribed_value(*piece.condition,
-                                        exact,
-                                        values.position(q),
-                                        values.normal(q));
+            const Tensor<1, 2> ua = prescribed_increment(*piece.condition,
+                                                         exact,
+                                                         values.position(q),
+                                                         values.normal(q),
+                                                         increment);
             for (unsigned int i = 0; i < n; ++i)
               {
                 const Tensor<1, 2> Ni = kernel.shape_value(i, st);
@@ -840,10 +845,11 @@ namespace bsmpm
             const double       ds = values.JxW(q);
             const Tensor<1, 2> misfit =
               kernel.displacement(da, values.local_coordinates(q)) -
-              factor * prescribed_value(*piece.condition,
-                                        exact,
-                                        values.position(q),
-                                        values.normal(q));
+              prescribed_increment(*piece.condition,
+                                   exact,
+                                   values.position(q),
+                                   values.normal(q),
+                                   increment);
             error2 += misfit.norm_square() * ds;
             length += ds;
           }
@@ -928,8 +934,8 @@ namespace bsmpm
       {
         Tensor<1, 2> w_b = field(foot);
         if (nearest->prescribes_displacement())
-          w_b -= last_increment_factor *
-                 prescribed_value(*nearest, last_exact, foot, -n_min);
+          w_b -= prescribed_increment(
+            *nearest, last_exact, foot, -n_min, last_increment);
         if (nearest->holds_normal_component_only())
           w -= (1 - D) * (w_b * n_min) * n_min;
         else

@@ -70,8 +70,8 @@ namespace bsmpm
 
   void
   NitscheBoundary::assemble(
-    const Context &context,
-    const double   increment_factor,
+    const Context       &context,
+    const LoadIncrement &increment,
     const LinearAlgebra::distributed::Vector<double> * /*prescribed*/,
     const std::vector<CellMoments>  *moments,
     const AffineConstraints<double> &constraints,
@@ -147,14 +147,15 @@ namespace bsmpm
           // (u . n - g_n) (v . n).
           Tensor<1, 2> g;
           if (condition->kind == CurveCondition::Kind::displacement)
-            g = increment_factor * (condition->function ?
-                                      condition->function_value(x, problem) :
-                                      exact->displacement(x));
+            g = condition->function ?
+                  condition->displacement_increment(x, increment, problem) :
+                  increment.share() * exact->displacement(x);
           else if (condition->kind == CurveCondition::Kind::normal_displacement)
-            g = increment_factor *
-                (condition->function ?
-                   condition->scalar_function_value(x, problem) :
-                   exact->displacement(x) * nv) *
+            g = (condition->function ?
+                   condition->normal_displacement_increment(x,
+                                                            increment,
+                                                            problem) :
+                   increment.share() * (exact->displacement(x) * nv)) *
                 nv;
           for (unsigned int i = 0; i < n; ++i)
             cell_rhs[i] += ds * (reaction * value[i] - stress_n[i] * g +

@@ -64,7 +64,7 @@ namespace bsmpm
   double
   SupportMethod::fit_prescribed_displacement(
     const Context &,
-    const double,
+    const LoadIncrement &,
     TrilinosWrappers::SparseMatrix &,
     LinearAlgebra::distributed::Vector<double> &) const
   {

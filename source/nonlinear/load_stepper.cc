@@ -171,17 +171,18 @@ namespace bsmpm
         delta                                   = std::min(delta, to - lambda);
         const std::vector<CellMoments> &moments = prepare_increment(cuts);
         const LoadLevel end = parts.stages.level(lambda + delta);
-        // The prescribed displacements' increment (none in a stage that
-        // keeps them, such as the ground's weight alone).
-        const double load_increment =
-          end.loads - parts.stages.level(lambda).loads;
+        // The prescribed displacements change with the loads multiplier
+        // (not in a stage that keeps it, such as the ground's weight alone).
+        const LoadIncrement load_increment{parts.stages.level(lambda).loads,
+                                           end.loads};
         if (assembly.fits_prescribed_displacement())
           {
             const double misfit =
               assembly.fit_prescribed_displacement(load_increment);
             // The fit is linear in u^a: the misfit of u^a itself.
-            if (load_increment != 0)
-              quantities["boundary_fit_error"] = misfit / load_increment;
+            if (load_increment.share() != 0)
+              quantities["boundary_fit_error"] =
+                misfit / std::abs(load_increment.share());
           }
         assembly.assemble(end, load_increment, moments, cell_quality);
         if (parts.linear_solver.estimates_condition() &&
@@ -243,7 +244,7 @@ namespace bsmpm
               pcout << "       load " << lambda << " + " << delta << ": "
                     << note << '\n';
           }
-        phases.move(step, delta);
+        phases.move(step, load_increment);
         lambda += delta;
         ++record.increments;
       }
@@ -296,7 +297,10 @@ namespace bsmpm
           unit_traction_resultant =
             parts.neumann_loads.resultant(parts.grid.mpi_communicator());
         const LoadLevel level = parts.stages.level(controlled_load_factor);
-        assembly.assemble(level, 0., moments, cell_quality);
+        assembly.assemble(level,
+                          LoadIncrement{level.loads, level.loads},
+                          moments,
+                          cell_quality);
         assembly.check_loads_finite(step);
         parts.constitutive_update->set_body_force(
           level.gravity * parts.material.density() * parts.gravity);
@@ -333,7 +337,7 @@ namespace bsmpm
                                               nullptr);
         }
         record.n_active_cells = assembly.n_active_cells();
-        phases.move(step, load_increment);
+        phases.move(step, LoadIncrement{level.loads, level.loads});
         controlled_load_factor += load_increment;
         done += portion;
         ++record.increments;

@@ -128,10 +128,10 @@ namespace bsmpm
      * of the points sorted into cells if they moved. */
     const std::vector<CellMoments> &
     compute_cell_moments();
-    /** Moves the points by the converged increment of load increment
-     * @p delta of load step @p step. */
+    /** Moves the points by the converged increment of load step @p step,
+     * whose prescribed displacements changed over @p load_increment. */
     void
-    move_points(const unsigned int step, const double delta);
+    move_points(const unsigned int step, const LoadIncrement &load_increment);
     /** Rebuilds the curves through the moved points and their cuts; an
      * error names load step @p step (0: before the first step). */
     void

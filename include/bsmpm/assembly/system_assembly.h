@@ -126,13 +126,13 @@ namespace bsmpm
     }
 
     /**
-     * Fits those nodal values d^a to the prescribed displacements times
-     * @p increment_factor (the load increment's share); assemble() and
+     * Fits those nodal values d^a to the prescribed displacements' change
+     * over the load increment @p increment; assemble() and
      * prescribed_displacement() then take them. Returns the root mean
      * square misfit along the supports.
      */
     double
-    fit_prescribed_displacement(const double increment_factor);
+    fit_prescribed_displacement(const LoadIncrement &increment);
 
     /** The nodal values of the last fit_prescribed_displacement(), or
      * nullptr if there was none. */
@@ -143,16 +143,15 @@ namespace bsmpm
     }
 
     /**
-     * Assembles K and r for the load multipliers @p level (LoadStages), the
-     * increment of the load multiplier being @p increment_factor
-     * (prescribed displacements are
-     * applied incrementally; fitted ones as of the last
+     * Assembles K and r for the load multipliers @p level (LoadStages) at
+     * the end of the load increment @p increment (prescribed displacements
+     * are applied by their change over it; fitted ones as of the last
      * fit_prescribed_displacement()). @p quality: support quality of every
      * locally owned cell (for the ghost penalty).
      */
     void
     assemble(const LoadLevel                &level,
-             const double                    increment_factor,
+             const LoadIncrement            &increment,
              const std::vector<CellMoments> &moments,
              const std::vector<double>      &quality);
 
@@ -359,7 +358,7 @@ namespace bsmpm
     /** Adds the terms of every support method of all curves, or of
      * @p only, to @p matrix and @p rhs. */
     void
-    add_support_terms(const double                     increment_factor,
+    add_support_terms(const LoadIncrement             &increment,
                       const AffineConstraints<double> &constraints,
                       TrilinosWrappers::SparseMatrix  &matrix,
                       TrilinosWrappers::MPI::Vector   &rhs,
@@ -386,7 +385,7 @@ namespace bsmpm
 
     /** Assembles the supports' terms of the reaction curves. */
     void
-    assemble_support_terms(const double increment_factor);
+    assemble_support_terms(const LoadIncrement &increment);
 
     /** The weak cells the matrix was made for (make_matrix()), and the
      * cells whose face couplings it holds: those and their neighbours. */

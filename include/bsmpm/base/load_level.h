@@ -20,6 +20,27 @@ namespace bsmpm
      * end. */
     double release = 0;
   };
+
+
+
+  /**
+   * One load increment: the loads multiplier (LoadLevel::loads, the t of
+   * expressions) from @p from to @p to. Prescribed displacements are
+   * imposed by their change over it.
+   */
+  struct LoadIncrement
+  {
+    double from = 0;
+    double to   = 0;
+
+    /** The growth of the multiplier: what scales a prescribed
+     * displacement that is not an expression of t. */
+    double
+    share() const
+    {
+      return to - from;
+    }
+  };
 } // namespace bsmpm
 
 #endif

@@ -101,16 +101,17 @@ namespace bsmpm
 
     /**
      * The increment of every curve point that belongs to a rigid body
-     * (BoundaryCurve::rigid_support()) for the load increment @p factor:
-     * factor u_n n with n the outward normal at the point and u_n the
-     * condition's normal displacement there (from @p exact for 'normal
-     * displacement exact'), by the point's slot in the tracked list of
+     * (BoundaryCurve::rigid_support()) over the load increment
+     * @p increment: the change of u_n n over it, with n the outward normal
+     * at the point and u_n the condition's normal displacement there (from
+     * @p exact for 'normal displacement exact'), by the point's slot in
+     * the tracked list of
      * @p n_slots points; the flag is false for every other slot.
      */
     std::vector<std::pair<bool, Tensor<1, 2>>>
     rigid_support_increments(const unsigned int   n_slots,
                              const ExactSolution *exact,
-                             const double         factor) const;
+                             const LoadIncrement &increment) const;
 
     const std::vector<BoundaryCurve> &
     get_curves() const

@@ -6,6 +6,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <bsmpm/base/load_level.h>
+
 #include <memory>
 #include <string>
 
@@ -32,8 +34,8 @@ namespace bsmpm
    * - exact traction: sigma(x) n from the scene's exact solution;
    * - fixed: u = 0; roller: u . n = 0 (n the normal of the current curve);
    * - displacement exact: u = u_exact(x); displacement <ux>; <uy>: u given
-   *   as expressions of x, y;
-   * - normal displacement <un>: u . n = un (an expression of x, y) with n
+   *   as expressions of x, y and t;
+   * - normal displacement <un>: u . n = un (an expression of x, y, t) with n
    *   the outward normal of the body on the current curve, the tangential
    *   component free (a smooth rigid footing pushed into the body has
    *   un < 0); normal displacement exact: u . n = u_exact(x) . n.
@@ -41,9 +43,10 @@ namespace bsmpm
    * step, t, except a load whose expression uses t: that expression is the
    * load at t itself (as a rigid body's Displacement and Force are), so
    * that loads of a staged scene can come on, stay and go in different
-   * stages (LoadStages). Prescribed displacements cannot use t yet.
-   * Supports are imposed by the curve's Dirichlet method (implicit
-   * boundary method or Nitsche's method).
+   * stages (LoadStages); a prescribed displacement is imposed by its
+   * increment over each load increment, so one that uses t also moves only
+   * where it changes. Supports are imposed by the curve's Dirichlet method
+   * (implicit boundary method or Nitsche's method).
    */
   struct CurveCondition
   {
@@ -105,6 +108,23 @@ namespace bsmpm
      * the rule of load_traction(). */
     double
     pressure_at(const double t) const;
+
+    /**
+     * The change of the expression of "displacement <ux>; <uy>" at @p x
+     * over @p increment: f(x, to) - f(x, from) for an expression of t,
+     * else (to - from) f(x). Problems as for function_value().
+     */
+    Tensor<1, 2>
+    displacement_increment(const Point<2>      &x,
+                           const LoadIncrement &increment,
+                           std::string         &problem) const;
+
+    /** As displacement_increment(), for the one component of "normal
+     * displacement <un>". */
+    double
+    normal_displacement_increment(const Point<2>      &x,
+                                  const LoadIncrement &increment,
+                                  std::string         &problem) const;
 
     /** Parses "[i-j:] kind [arguments]"; @p where names the parameter. */
     static CurveCondition

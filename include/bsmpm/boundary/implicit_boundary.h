@@ -90,7 +90,7 @@ namespace bsmpm
      * previous steps and of the force of a prescribed displacement: through
      * @p prescribed (d^a with ghosts, frame and paper formulations) or, in
      * the consistent formulation, from the prescribed values themselves
-     * times @p increment_factor (the context's exact solution for
+     * changed over @p increment (the context's exact solution for
      * "displacement exact"). With @p only, the supports of that curve alone
      * (SupportReaction). With a B-bar kernel, @p moments (by
      * active_cell_index) give each cell's centroid for the B-bar stress of
@@ -103,7 +103,7 @@ namespace bsmpm
      */
     void
     assemble(const Context                                    &context,
-             const double                                      increment_factor,
+             const LoadIncrement                              &increment,
              const LinearAlgebra::distributed::Vector<double> *prescribed,
              const std::vector<CellMoments>                   *moments,
              const AffineConstraints<double>                  &constraints,
@@ -162,7 +162,8 @@ namespace bsmpm
 
     /**
      * The least-squares nodal values d^a of eq. 36 for the prescribed
-     * displacement u^a times @p factor, over the pieces of IBM displacement
+     * displacement's change u^a over @p increment, over the pieces of IBM
+     * displacement
      * supports; zero at DoFs whose support does not meet them. @p mass is a
      * matrix with the system's sparsity pattern, used as work space.
      * Returns the root mean square of M d^a - u^a along those pieces.
@@ -170,7 +171,7 @@ namespace bsmpm
     double
     fit_prescribed_displacement(
       const Context                              &context,
-      const double                                factor,
+      const LoadIncrement                        &increment,
       TrilinosWrappers::SparseMatrix             &mass,
       LinearAlgebra::distributed::Vector<double> &prescribed) const override;
 
@@ -330,25 +331,28 @@ namespace bsmpm
 
     /** The BoundaryFrame of Gauss point @p q of the piece of @p values'
      * last reinit(); @p imposed: the condition whose prescribed
-     * displacement times @p factor the support imposes, or nullptr. */
+     * displacement's change over @p increment the support imposes, or
+     * nullptr. */
     static void
     boundary_frame(const CurvePieceValues &values,
                    const unsigned int      q,
                    const Q1CellKernel     &kernel,
                    const CurveCondition   *imposed,
-                   const double            factor,
+                   const LoadIncrement    &increment,
                    const ExactSolution    *exact,
                    BoundaryFrame          &frame);
 
-    /** The value of u^a of @p condition at @p x: the displacement, or for
-     * a normal displacement u_n n with n = @p outward_normal (the curve's
-     * outward normal, at x or at the boundary point the caller holds it
-     * constant from). */
+    /** The change of u^a of @p condition at @p x over @p increment
+     * (CurveCondition::displacement_increment()): of the displacement, or
+     * for a normal displacement of u_n n with n = @p outward_normal (the
+     * curve's outward normal, at x or at the boundary point the caller
+     * holds it constant from). */
     static Tensor<1, 2>
-    prescribed_value(const CurveCondition &condition,
-                     const ExactSolution  *exact,
-                     const Point<2>       &x,
-                     const Tensor<1, 2>   &outward_normal);
+    prescribed_increment(const CurveCondition &condition,
+                         const ExactSolution  *exact,
+                         const Point<2>       &x,
+                         const Tensor<1, 2>   &outward_normal,
+                         const LoadIncrement  &increment);
 
     double       relative_band_width = 1e-2;
     unsigned int points_along        = 2;
@@ -363,10 +367,10 @@ namespace bsmpm
     Formulation formulation = Formulation::consistent;
 
     std::vector<BandPoint> points;
-    /** The increment factor and exact solution of the last assemble(), for
+    /** The load increment and exact solution of the last assemble(), for
      * support_displacement(). */
-    double               last_increment_factor = 0;
-    const ExactSolution *last_exact            = nullptr;
+    LoadIncrement        last_increment;
+    const ExactSolution *last_exact = nullptr;
   };
 } // namespace bsmpm
 

@@ -66,7 +66,7 @@ namespace bsmpm
      */
     void
     assemble(const Context                                    &context,
-             const double                                      increment_factor,
+             const LoadIncrement                              &increment,
              const LinearAlgebra::distributed::Vector<double> *prescribed,
              const std::vector<CellMoments>                   *moments,
              const AffineConstraints<double>                  &constraints,

@@ -134,7 +134,8 @@ namespace bsmpm
     /**
      * Adds the method's terms of all its supports on locally owned cells to
      * @p matrix and @p rhs, through @p constraints, for the load increment
-     * whose share of the prescribed displacements is @p increment_factor.
+     * @p increment (the prescribed displacements imposed by their change
+     * over it).
      * @p prescribed: the nodal values of a fitted prescribed displacement
      * (fit_prescribed_displacement()), or nullptr. With a B-bar kernel,
      * @p moments (by active_cell_index) give each cell's centroid. With
@@ -142,7 +143,7 @@ namespace bsmpm
      */
     virtual void
     assemble(const Context                                    &context,
-             const double                                      increment_factor,
+             const LoadIncrement                              &increment,
              const LinearAlgebra::distributed::Vector<double> *prescribed,
              const std::vector<CellMoments>                   *moments,
              const AffineConstraints<double>                  &constraints,
@@ -212,15 +213,15 @@ namespace bsmpm
     fits_prescribed_displacement(const BoundaryCurves &curves) const;
 
     /**
-     * Those nodal values for the prescribed displacement times @p factor
-     * into @p prescribed; @p mass is a matrix with the system's sparsity
+     * Those nodal values for the prescribed displacement's change over
+     * @p increment into @p prescribed; @p mass is a matrix with the system's sparsity
      * pattern, used as work space. Returns the root mean square misfit
      * along the supports. Only if fits_prescribed_displacement().
      */
     virtual double
     fit_prescribed_displacement(
       const Context                              &context,
-      const double                                factor,
+      const LoadIncrement                        &increment,
       TrilinosWrappers::SparseMatrix             &mass,
       LinearAlgebra::distributed::Vector<double> &prescribed) const;
 

@@ -84,9 +84,12 @@ namespace bsmpm
       /** The material moments of every cell (by active_cell_index()) of
        * the points as they are now. */
       std::function<const std::vector<CellMoments> &()> cell_moments;
-      /** Moves the points by the converged increment, load increment
-       * @p delta of load step @p step, and rebuilds the curves. */
-      std::function<void(const unsigned int step, const double delta)> move;
+      /** Moves the points by the converged increment of load step
+       * @p step, whose prescribed displacements changed over
+       * @p increment, and rebuilds the curves. */
+      std::function<void(const unsigned int   step,
+                         const LoadIncrement &increment)>
+        move;
     };
 
     LoadStepper(const Parts                   &parts,
