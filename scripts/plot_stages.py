@@ -45,53 +45,42 @@ def run(prm, settings, directory):
         return json.load(f)
 
 
-with tempfile.TemporaryDirectory() as tmp:
-    # The wall.
+def plot_wall(prm, direction, tmp, references, xlabel, name):
+    """The thrust on the wall of @p prm against its motion (the at-rest
+    thrust of the own-weight stage at zero; @p direction -1 for a wall
+    pushed towards -x) at h = 0.5, 0.25, 0.125, with the lines
+    @p references (value, style, label), into @p name."""
     plt.figure(figsize=(6, 4))
     for h, n in [(0.5, 21), (0.25, 41), (0.125, 81)]:
-        s = run("retaining-wall-active.prm",
+        s = run(prm,
                 [f"Background grid/Cell size={h}",
                  f"Boundary curves/Curve 1/Number of points={n}"],
-                os.path.join(tmp, f"wall-{h}"))
+                os.path.join(tmp, f"{prm}-{h}"))
         at_rest = [x for x in s["steps"] if x["stage"] == 1][-1]
         moving = [x for x in s["steps"] if x["stage"] == 2]
-        u = [0] + [x["quantities"]["rigid_body_1_displacement_x"]
+        u = [0] + [direction * x["quantities"]["rigid_body_1_displacement_x"]
                    for x in moving]
         f = [at_rest["quantities"]["rigid_body_1_force_x"]] + \
             [x["quantities"]["rigid_body_1_force_x"] for x in moving]
         plt.plot(u, f, marker=".", label=f"h = {h} m")
-    plt.axhline(120.75, color="k", ls="--",
-                label=r"wedge: $\gamma H^2/2 - 2 c_u H$")
-    plt.axhline(132.1, color="k", ls=":",
-                label=r"Rankine with tension crack")
-    plt.xlabel("wall moved away from the clay (m)")
+    for value, style, label in references:
+        plt.axhline(value, color="k", ls=style, label=label)
+    plt.xlabel(xlabel)
     plt.ylabel("thrust on the wall (kN/m)")
     plt.legend()
     plt.tight_layout()
-    plt.savefig(os.path.join(args.output, "stages_wall.png"), dpi=120)
+    plt.savefig(os.path.join(args.output, name), dpi=120)
 
-    # The wall pushed into the clay (finite strain, smooth base).
-    plt.figure(figsize=(6, 4))
-    for h, n in [(0.5, 21), (0.25, 41), (0.125, 81)]:
-        s = run("retaining-wall-passive.prm",
-                [f"Background grid/Cell size={h}",
-                 f"Boundary curves/Curve 1/Number of points={n}"],
-                os.path.join(tmp, f"passive-{h}"))
-        at_rest = [x for x in s["steps"] if x["stage"] == 1][-1]
-        moving = [x for x in s["steps"] if x["stage"] == 2]
-        u = [0] + [-x["quantities"]["rigid_body_1_displacement_x"]
-                   for x in moving]
-        f = [at_rest["quantities"]["rigid_body_1_force_x"]] + \
-            [x["quantities"]["rigid_body_1_force_x"] for x in moving]
-        plt.plot(u, f, marker=".", label=f"h = {h} m")
-    plt.axhline(320.7, color="k", ls="--",
-                label=r"Rankine: $\gamma H^2/2 + 2 c_u H$")
-    plt.xlabel("wall pushed into the clay (m)")
-    plt.ylabel("thrust on the wall (kN/m)")
-    plt.legend()
-    plt.tight_layout()
-    plt.savefig(os.path.join(args.output, "stages_wall_passive.png"),
-                dpi=120)
+
+with tempfile.TemporaryDirectory() as tmp:
+    plot_wall("retaining-wall-active.prm", 1, tmp,
+              [(120.75, "--", r"wedge: $\gamma H^2/2 - 2 c_u H$"),
+               (132.1, ":", r"Rankine with tension crack")],
+              "wall moved away from the clay (m)", "stages_wall.png")
+    # Finite strain, smooth base.
+    plot_wall("retaining-wall-passive.prm", -1, tmp,
+              [(320.7, "--", r"Rankine: $\gamma H^2/2 + 2 c_u H$")],
+              "wall pushed into the clay (m)", "stages_wall_passive.png")
 
     # The footing.
     plt.figure(figsize=(6, 4))
