@@ -520,7 +520,17 @@ namespace bsmpm
         run_summary.print_step(pcout.get_stream(), record);
     update_curves(0);
     if (contact.enabled() && first_step == 1)
-      contact.check_initial_places(boundary_curves, points, grid);
+      {
+        // The bodies' prescribed motions over the whole load path.
+        double largest_load_factor = 0;
+        for (unsigned int k = 1; k <= stages.n_stages(); ++k)
+          largest_load_factor =
+            std::max(largest_load_factor, stages.level(k).loads);
+        contact.check_initial_places(boundary_curves,
+                                     points,
+                                     grid,
+                                     largest_load_factor);
+      }
     if (output.enabled() && first_step == 1)
       write_output(0, 0.);
 

@@ -617,7 +617,8 @@ namespace bsmpm
   void
   CurveContact::check_initial_places(const BoundaryCurves &curves,
                                      const MaterialPoints &points,
-                                     const BackgroundGrid &grid) const
+                                     const BackgroundGrid &grid,
+                                     const double last_load_factor) const
   {
     std::vector<Tensor<1, 2>> places;
     for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -628,6 +629,10 @@ namespace bsmpm
                               points,
                               grid.min_cell_size(),
                               grid.mpi_communicator());
+    RigidBodyPlacement::check_motion_along_faces(bodies,
+                                                 grid,
+                                                 points,
+                                                 last_load_factor);
   }
 
 

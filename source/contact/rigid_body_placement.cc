@@ -162,4 +162,88 @@ namespace bsmpm
                   " m, counts as touching): move it (its Vertices or Center, "
                   "or its Displacement at t = 0) or make it smaller."));
   }
+
+
+  void
+  RigidBodyPlacement::check_motion_along_faces(
+    const std::vector<RigidBody> &bodies,
+    const BackgroundGrid         &grid,
+    const MaterialPoints         &points,
+    const double                  last_load_factor)
+  {
+    const double                      h          = grid.min_cell_size();
+    const std::array<const char *, 4> face_names = {
+      {"Left", "Right", "Bottom", "Top"}};
+    std::string problems;
+    for (unsigned int f = 0; f < 4; ++f)
+      {
+        if (grid.face_condition(f) != BackgroundGrid::FaceCondition::fixed)
+          continue;
+        // The face's line n = at, and the direction t along it.
+        const unsigned int n = f / 2, t = 1 - n;
+        const double       at =
+          f % 2 == 0 ? grid.lower_left()[n] : grid.upper_right()[n];
+        for (const RigidBody &body : bodies)
+          {
+            // Where the body's outline crosses the face's line: the
+            // stretch [a, b] of the line inside the body.
+            const std::vector<Point<2>> outline =
+              body.outline(body.displacement(0));
+            double a = std::numeric_limits<double>::infinity(), b = -a;
+            for (unsigned int k = 0; k + 1 < outline.size(); ++k)
+              {
+                const Point<2> &p = outline[k], &q = outline[k + 1];
+                if ((p[n] - at) * (q[n] - at) > 0 || p[n] == q[n])
+                  continue;
+                const double s = (at - p[n]) / (q[n] - p[n]);
+                const double c = p[t] + s * (q[t] - p[t]);
+                a              = std::min(a, c);
+                b              = std::max(b, c);
+              }
+            if (!(a < b))
+              continue;
+            // The farthest the body moves along the face either way.
+            double ahead = 0, back = 0;
+            for (unsigned int i = 1; i <= 64; ++i)
+              {
+                const double along =
+                  body.displacement(i * last_load_factor / 64)[t] -
+                  body.displacement(0)[t];
+                ahead = std::max(ahead, along);
+                back  = std::min(back, along);
+              }
+            // Material held by the face next to the body, on the side it
+            // moves to.
+            double met = std::numeric_limits<double>::quiet_NaN();
+            for (const auto &particle : points.particle_handler())
+              {
+                const Point<2> &x = particle.get_location();
+                if (particle
+                        .get_properties()[MaterialPoints::Property::volume] <=
+                      0 ||
+                    std::abs(x[n] - at) > h)
+                  continue;
+                if ((ahead > 0 && x[t] >= b && x[t] - b < h) ||
+                    (back < 0 && x[t] <= a && a - x[t] < h))
+                  met = x[t];
+              }
+            met = Utilities::MPI::max(std::isnan(met) ? -1e300 : met,
+                                      grid.mpi_communicator());
+            if (met > -1e300)
+              problems += " " + body.section() +
+                          " reaches through the grid's fixed " + face_names[f] +
+                          " face, and its Displacement moves it along "
+                          "that face towards the material the face holds "
+                          "(at " +
+                          (t == 0 ? "x = " : "y = ") + placement_figure(met) +
+                          "): that material can neither move nor make room, "
+                          "so the body would have to pass through it. Make "
+                          "the face a roller (Background grid/Face "
+                          "conditions/" +
+                          face_names[f] +
+                          ") or let the body end inside the grid.";
+          }
+      }
+    AssertThrow(problems.empty(), ExcMessage(Utilities::trim(problems)));
+  }
 } // namespace bsmpm

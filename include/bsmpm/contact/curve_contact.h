@@ -116,12 +116,15 @@ namespace bsmpm
     }
 
     /** Refuses rigid bodies that start inside the body (its material
-     * @p points and @p curves) or inside each other, before the first
-     * step (RigidBodyPlacement). Collective. */
+     * @p points and @p curves) or inside each other, and those whose
+     * prescribed motion up to load factor @p last_load_factor drives them
+     * along a fixed face of @p grid into the material it holds, before
+     * the first step (RigidBodyPlacement). Collective. */
     void
     check_initial_places(const BoundaryCurves &curves,
                          const MaterialPoints &points,
-                         const BackgroundGrid &grid) const;
+                         const BackgroundGrid &grid,
+                         const double          last_load_factor) const;
 
     /** The bodies' outlines where the last finish_increment() left them
      * (closed polylines), for output. */

@@ -70,6 +70,22 @@ namespace bsmpm
           const MaterialPoints            &points,
           const double                     cell_size,
           const MPI_Comm                   communicator);
+
+    /**
+     * Throws, naming the body, the face and the parameters to change, if a
+     * rigid body reaches through a fixed face of @p grid and its prescribed
+     * translation (sampled at load factors 0 .. @p last_load_factor)
+     * moves it along that face towards material points that lie within a
+     * cell of the face and of the body: the face holds that material in
+     * place, so the body would have to pass through it (a wall translated
+     * into soil on a fixed base), a problem without a solution. A roller
+     * face lets the material slide and is not refused. Collective.
+     */
+    static void
+    check_motion_along_faces(const std::vector<RigidBody> &bodies,
+                             const BackgroundGrid         &grid,
+                             const MaterialPoints         &points,
+                             const double                  last_load_factor);
   };
 } // namespace bsmpm
 

@@ -216,6 +216,14 @@ namespace bsmpm
     bool
     has_face_conditions() const;
 
+    /** The support condition of face @p f: 0 left, 1 right, 2 bottom,
+     * 3 top. */
+    FaceCondition
+    face_condition(const unsigned int f) const
+    {
+      return face_conditions[f];
+    }
+
   private:
     MPI_Comm                                communicator;
     parallel::distributed::Triangulation<2> tria;
