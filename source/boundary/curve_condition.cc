@@ -235,10 +235,7 @@ namespace bsmpm
            ExcInternalError());
     if (kind == Kind::pressure)
       return -pressure_at(t) * normal;
-    if (!expression_of_t)
-      return t * function_value(x, problem);
-    function->set_time(t);
-    return function_value(x, problem);
+    return value_at(t, [&]() { return function_value(x, problem); });
   }
 
 
@@ -246,10 +243,9 @@ namespace bsmpm
   double
   CurveCondition::pressure_at(const double t) const
   {
-    if (!expression_of_t)
-      return t * pressure;
-    function->set_time(t);
-    return function->value(Point<2>(), 0);
+    return value_at(t, [&]() {
+      return expression_of_t ? function->value(Point<2>(), 0) : pressure;
+    });
   }
 
 
@@ -259,12 +255,7 @@ namespace bsmpm
                                          const LoadIncrement &increment,
                                          std::string         &problem) const
   {
-    if (!expression_of_t)
-      return increment.share() * function_value(x, problem);
-    function->set_time(increment.to);
-    const Tensor<1, 2> to = function_value(x, problem);
-    function->set_time(increment.from);
-    return to - function_value(x, problem);
+    return change_over(increment, [&]() { return function_value(x, problem); });
   }
 
 
@@ -274,12 +265,8 @@ namespace bsmpm
                                                 const LoadIncrement &increment,
                                                 std::string &problem) const
   {
-    if (!expression_of_t)
-      return increment.share() * scalar_function_value(x, problem);
-    function->set_time(increment.to);
-    const double to = scalar_function_value(x, problem);
-    function->set_time(increment.from);
-    return to - scalar_function_value(x, problem);
+    return change_over(increment,
+                       [&]() { return scalar_function_value(x, problem); });
   }
 
 

@@ -196,6 +196,34 @@ namespace bsmpm
     /** Name of the kind, as in the parameter file. */
     std::string
     kind_name() const;
+
+  private:
+    /** The value @p value() gives at the load factor @p t: for an
+     * expression of t evaluated there, else t times the given value. */
+    template <typename Value>
+    auto
+    value_at(const double t, const Value &value) const
+    {
+      if (!expression_of_t)
+        return t * value();
+      function->set_time(t);
+      return value();
+    }
+
+    /** The change of the value @p value() gives over @p increment: of the
+     * expression of t between its ends, else its growth times the given
+     * value. */
+    template <typename Value>
+    auto
+    change_over(const LoadIncrement &increment, const Value &value) const
+    {
+      if (!expression_of_t)
+        return increment.share() * value();
+      function->set_time(increment.to);
+      const auto to = value();
+      function->set_time(increment.from);
+      return to - value();
+    }
   };
 } // namespace bsmpm
 
