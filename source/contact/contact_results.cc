@@ -1,7 +1,12 @@
+#include <deal.II/base/mpi.h>
+
 #include <bsmpm/contact/contact_results.h>
 
 #include <algorithm>
+#include <array>
 #include <iomanip>
+#include <map>
+#include <numeric>
 
 namespace bsmpm
 {
@@ -18,8 +23,33 @@ namespace bsmpm
                           const std::vector<ContactPieceState> &states,
                           const MPI_Comm                        communicator)
   {
-    std::vector<Touch>  touches;
     std::vector<double> penetration(resultants.size(), 0.);
+    for (unsigned int p = 0; p < pieces.size(); ++p)
+      if (states[p].active)
+        penetration[pieces[p].body] =
+          std::max(penetration[pieces[p].body], -states[p].gap);
+    const bool between_crossings =
+      Utilities::MPI::logical_or(std::any_of(pieces.begin(),
+                                             pieces.end(),
+                                             [](const ContactPiece &piece) {
+                                               return piece.between_crossings;
+                                             }),
+                                 communicator);
+    collect(between_crossings ?
+              touches_at_crossings(pieces, states, communicator) :
+              touches_of_pieces(pieces, states),
+            penetration,
+            communicator);
+  }
+
+
+
+  std::vector<ContactResults::Touch>
+  ContactResults::touches_of_pieces(
+    const std::vector<ContactPiece>      &pieces,
+    const std::vector<ContactPieceState> &states)
+  {
+    std::vector<Touch> touches;
     for (unsigned int p = 0; p < pieces.size(); ++p)
       {
         const ContactPiece      &piece = pieces[p];
@@ -40,9 +70,132 @@ namespace bsmpm
         touch.sliding        = state.sliding;
         touch.resultant      = state.resultant;
         touches.push_back(touch);
-        penetration[piece.body] = std::max(penetration[piece.body], -state.gap);
       }
-    collect(touches, penetration, communicator);
+    return touches;
+  }
+
+
+
+  std::vector<ContactResults::Touch>
+  ContactResults::touches_at_crossings(
+    const std::vector<ContactPiece>      &pieces,
+    const std::vector<ContactPieceState> &states,
+    const MPI_Comm                        communicator)
+  {
+    // The traction at a crossing k is its lumped projection
+    // T_k = int phi_k t ds / W_k, W_k = int phi_k ds, over the pieces on
+    // either side (on any process): the force the crossing's hat function
+    // carries per unit length. Its penalty pressures at the Gauss points
+    // sit where a straight trace cuts a curved outline; T_k is the
+    // pressure the discretisation holds. sum_k T_k W_k = int t ds, the
+    // force. Per crossing of a piece: body, curve, key, W, int phi t ds
+    // (x, y), int phi ds where it slides, int phi g ds, the crossing's
+    // place (x, y) and the outline's normal there (x, y).
+    constexpr unsigned int width = 12;
+    std::vector<double>    local;
+    for (unsigned int p = 0; p < pieces.size(); ++p)
+      for (unsigned int e = 0; e < 2; ++e)
+        {
+          const ContactPieceState &state = states[p];
+          const Tensor<1, 2>       force =
+            state.end_weights[e] * state.end_tractions[e];
+          local.insert(local.end(),
+                       {double(pieces[p].body),
+                        double(pieces[p].curve),
+                        pieces[p].end_keys[e],
+                        state.end_weights[e],
+                        force[0],
+                        force[1],
+                        state.end_sliding[e],
+                        state.end_weighted_gaps[e],
+                        state.end_places[e][0],
+                        state.end_places[e][1],
+                        state.end_normals[e][0],
+                        state.end_normals[e][1]});
+        }
+    // The length in contact: a touching piece between two crossings that
+    // touching pieces share on both sides (inside a touching stretch)
+    // counts whole, one at a stretch's end the part that touches. A
+    // straight trace against a curved outline touches in the middle of
+    // its pieces only (a wrapped pipe), and the crossing beyond a
+    // footing's edge carries a pressure from the part of its piece that
+    // touches: neither the touching Gauss points nor the crossings' W
+    // alone measure the arc. Per touching piece: body, curve, both keys,
+    // its length and the length that touches.
+    std::vector<double> touching;
+    for (unsigned int p = 0; p < pieces.size(); ++p)
+      if (states[p].active)
+        touching.insert(touching.end(),
+                        {double(pieces[p].body),
+                         double(pieces[p].curve),
+                         pieces[p].end_keys[0],
+                         pieces[p].end_keys[1],
+                         std::accumulate(pieces[p].weights.begin(),
+                                         pieces[p].weights.end(),
+                                         0.),
+                         states[p].contact_length});
+    const auto all          = Utilities::MPI::gather(communicator, local, 0);
+    const auto all_touching = Utilities::MPI::gather(communicator, touching, 0);
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return {};
+    using Key = std::array<double, 3>;
+    std::map<Key, unsigned int> n_touching;
+    for (const auto &part : all_touching)
+      for (unsigned int i = 0; i + 6 <= part.size(); i += 6)
+        for (const unsigned int e : {2u, 3u})
+          ++n_touching[{{part[i], part[i + 1], part[i + e]}}];
+    std::map<Key, double> contact_length;
+    for (const auto &part : all_touching)
+      for (unsigned int i = 0; i + 6 <= part.size(); i += 6)
+        {
+          const Key  ends[2] = {{{part[i], part[i + 1], part[i + 2]}},
+                                {{part[i], part[i + 1], part[i + 3]}}};
+          const bool inside =
+            n_touching[ends[0]] == 2 && n_touching[ends[1]] == 2;
+          for (const Key &end : ends)
+            contact_length[end] += (inside ? part[i + 4] : part[i + 5]) / 2;
+        }
+    // Summed by crossing in the order of the keys (the same on any number
+    // of processes); the place, normal and gap are the crossing's own.
+    std::map<Key, std::array<double, width>> crossings;
+    for (const auto &part : all)
+      for (unsigned int i = 0; i + width <= part.size(); i += width)
+        {
+          auto [at, added] =
+            crossings.try_emplace({{part[i], part[i + 1], part[i + 2]}},
+                                  std::array<double, width>());
+          auto &sum = at->second;
+          for (unsigned int j = 3; j < 8; ++j)
+            sum[j] += part[i + j];
+          if (added)
+            for (unsigned int j = 8; j < width; ++j)
+              sum[j] = part[i + j];
+        }
+    std::vector<Touch> touches;
+    for (const auto &[key, sum] : crossings)
+      {
+        const double       W = sum[3];
+        const Tensor<1, 2> force({sum[4], sum[5]});
+        if (!(W > 0) || force.norm() == 0.)
+          continue;
+        const Tensor<1, 2> n({sum[10], sum[11]});
+        const Tensor<1, 2> traction = force / W;
+        Touch              touch;
+        touch.body           = static_cast<unsigned int>(key[0]);
+        touch.curve          = static_cast<unsigned int>(key[1]);
+        touch.x              = Point<2>(sum[8], sum[9]);
+        touch.normal         = n;
+        touch.gap            = sum[7] / W;
+        touch.pressure       = traction * n;
+        touch.tangential     = traction * Tensor<1, 2>({-n[1], n[0]});
+        touch.length         = W;
+        touch.contact_length = contact_length[key];
+        touch.sliding_length = sum[6];
+        touch.sliding        = sum[6] > 0;
+        touch.resultant      = force;
+        touches.push_back(touch);
+      }
+    return touches;
   }
 
 

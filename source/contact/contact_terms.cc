@@ -277,8 +277,14 @@ namespace bsmpm
     std::array<ShapeValues, 2>  N_end;
     std::array<Tensor<1, 2>, 2> u_end;
     for (unsigned int e = 0; e < 2; ++e)
-      u_end[e] =
-        shape_values(grid, kernel, piece.cell, piece.ends[e], d, N_end[e]);
+      {
+        u_end[e] =
+          shape_values(grid, kernel, piece.cell, piece.ends[e], d, N_end[e]);
+        state.end_places[e] = piece.ends[e] + u_end[e];
+        state.end_normals[e] =
+          body.to_feature(state.end_places[e], place, piece.end_features[e])
+            .normal;
+      }
     ShapeValues    N;
     Vector<double> G(n), T(n);
     double         length = 0;
@@ -293,6 +299,8 @@ namespace bsmpm
         const Tensor<1, 2> u = phi[0] * u_end[0] + phi[1] * u_end[1];
         const SurfacePoint surface =
           body.to_feature(piece.positions[q] + u, place, piece.features[q]);
+        for (unsigned int e = 0; e < 2; ++e)
+          state.end_weighted_gaps[e] += w * phi[e] * surface.gap;
         const Tensor<1, 2> &nq = surface.normal;
         const Tensor<1, 2>  tq({-nq[1], nq[0]});
         // Coulomb's return map at the Gauss point, on its slip relative
@@ -325,6 +333,8 @@ namespace bsmpm
             state.sliding      = state.sliding || sliding;
             state.symmetric    = state.symmetric && !sliding;
             state.sliding_length += sliding ? w : 0.;
+            for (unsigned int e = 0; e < 2; ++e)
+              state.end_sliding[e] += sliding ? w * phi[e] : 0.;
             state.tangential += w * t_T;
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)

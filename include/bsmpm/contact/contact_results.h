@@ -21,15 +21,18 @@ namespace bsmpm
   /**
    * What contact did in the last converged increment, for output: per
    * rigid body the force on it, the lengths in contact and sliding and the
-   * largest penetration (summary.json), and per touching piece its place,
-   * the rigid outline's normal there, gap and tractions (contact-NNNN.csv,
+   * largest penetration (summary.json), and per touching piece (or
+   * crossing, or Gauss point) its place, the rigid outline's normal
+   * there, gap and tractions (contact-NNNN.csv,
    * after every load step).
    */
   class ContactResults
   {
   public:
-    /** A place where a curve touches a body: a piece (one pressure per cell,
-     * at the grid lines) or a Gauss point (mortar pressures). */
+    /** A place where a curve touches a body: a piece (one pressure per
+     * cell), a crossing of the curve with a grid line (pressures at the
+     * grid lines: x its place, the traction and gap projected on its hat
+     * function, length W_k) or a Gauss point (mortar pressures). */
     struct Touch
     {
       unsigned int body  = 0;
@@ -77,18 +80,32 @@ namespace bsmpm
            const RigidBodyMotion         &motion,
            std::map<std::string, double> &quantities) const;
 
-    /** The touching pieces on all processes (collective; written by
-     * process 0 only), as CSV: body and curve (numbered from 1, the
-     * curves as in the ParaView series curves), x, y (the mean place of
-     * the touching part), the rigid outline's outward normal n there, the
-     * mean gap, the pressure p_N and tangential traction t_T (on the body,
-     * along n and t = (-n_y, n_x)), the length in contact and whether it
-     * slides. The force on the rigid body is minus the sum of
-     * (p_N n + t_T t) length over its rows. */
+    /** The touches on all processes (collective; written by process 0
+     * only), as CSV: body and curve (numbered from 1, the curves as in the
+     * ParaView series curves), x, y, the rigid outline's outward normal n
+     * there, the gap, the pressure p_N and tangential traction t_T (on the
+     * body, along n and t = (-n_y, n_x)), the length the row stands for
+     * and whether and how much of it slides (Touch). The force on the
+     * rigid body is minus the sum of (p_N n + t_T t) length over its
+     * rows. */
     void
     write_tractions(std::ostream &out, const MPI_Comm communicator) const;
 
   private:
+    /** One touch per piece that touches (one pressure per cell). */
+    static std::vector<Touch>
+    touches_of_pieces(const std::vector<ContactPiece>      &pieces,
+                      const std::vector<ContactPieceState> &states);
+
+    /** Pressures at the grid lines: one touch per crossing that carries a
+     * traction, on process 0 (none elsewhere), its traction the lumped
+     * projection of the pieces' on either side, its length W_k = int
+     * phi_k ds. Collective. */
+    static std::vector<Touch>
+    touches_at_crossings(const std::vector<ContactPiece>      &pieces,
+                         const std::vector<ContactPieceState> &states,
+                         const MPI_Comm                        communicator);
+
     struct Resultant
     {
       Tensor<1, 2> force;

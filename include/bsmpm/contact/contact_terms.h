@@ -59,6 +59,14 @@ namespace bsmpm
     std::array<double, 2>       end_weights = {{0, 0}};
     std::array<double, 2>       end_gaps    = {{0, 0}};
     std::array<Tensor<1, 2>, 2> end_tractions;
+    /** Between crossings, for the output per crossing (ContactResults):
+     * where each crossing is after the increment, the outline's outward
+     * normal there, the integral of phi times the gap over all Gauss
+     * points (touching or not) and of phi where the piece slides. */
+    std::array<Point<2>, 2>     end_places;
+    std::array<Tensor<1, 2>, 2> end_normals;
+    std::array<double, 2>       end_weighted_gaps = {{0, 0}};
+    std::array<double, 2>       end_sliding       = {{0, 0}};
   };
 
 

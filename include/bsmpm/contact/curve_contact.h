@@ -249,7 +249,7 @@ namespace bsmpm
       archive &body_motion;
     }
 
-    /** The touching pieces of the last finish_increment() on all
+    /** The touches of the last finish_increment() on all
      * processes as CSV (collective; written by process 0 only):
      * ContactResults::write_tractions(). */
     void
