@@ -6,8 +6,9 @@ prm/strip-footing-rigid.prm pushed into von Mises soil in finite strain,
 --steps N runs the first N of those load steps only (the footing moved
 N * 0.01075 m in N steps of the same size). The run must complete at every
 --np given, every step without a cut increment (--no-cuts), the contact
-length under the base at every step within --length of the first run's
-mean, and the runs at several np agree in the force to --agree.
+length at every step at least --length times its mean over the run (the
+footing keeps its contact), and the runs at several np agree in the force
+to --agree.
 Prints per step q = F_y / (B/2) (kPa), the contact length and the points
 inserted / removed on the curves.
 
@@ -35,8 +36,9 @@ parser.add_argument("--cell-size", type=float, default=0.125)
 parser.add_argument("--steps", type=int, default=100)
 parser.add_argument("--np", type=int, nargs="+", default=[1])
 parser.add_argument("--no-cuts", action="store_true")
-parser.add_argument("--length", type=float, default=0.1,
-                    help="allowed scatter of the contact length (m)")
+parser.add_argument("--length", type=float, default=0.5,
+                    help="the least contact length allowed, as a fraction "
+                    "of the run's mean (a footing that loses its contact)")
 parser.add_argument("--agree", type=float, default=1e-6,
                     help="relative difference of the forces between np")
 parser.add_argument("--repeat", action="store_true",
@@ -90,11 +92,14 @@ for np, summary in summaries.items():
             problems.append(f"np = {np}: steps {cut} were cut")
     lengths = [s["quantities"]["rigid_body_1_contact_length"] for s in steps]
     mean = sum(lengths) / max(1, len(lengths))
-    far = [(s["step"], round(l, 3)) for s, l in zip(steps, lengths)
-           if abs(l - mean) > args.length]
-    if far:
-        problems.append(f"np = {np}: contact length further than "
-                        f"{args.length} m from its mean {mean:.3f}: {far}")
+    # The length moves by up to a piece as the touching stretch gains or
+    # loses one (doc/contact.md); a footing that loses its contact falls
+    # far below its mean.
+    short = [(s["step"], round(l, 3)) for s, l in zip(steps, lengths)
+             if l < args.length * mean]
+    if short:
+        problems.append(f"np = {np}: contact length below {args.length} "
+                        f"of its mean {mean:.3f}: {short}")
 
 runs = [s for s in summaries.values() if s is not None]
 for other, np in zip(runs[1:], list(summaries)[1:]):
