@@ -6,7 +6,6 @@
 #include <array>
 #include <iomanip>
 #include <map>
-#include <numeric>
 
 namespace bsmpm
 {
@@ -130,9 +129,7 @@ namespace bsmpm
                          double(pieces[p].curve),
                          pieces[p].end_keys[0],
                          pieces[p].end_keys[1],
-                         std::accumulate(pieces[p].weights.begin(),
-                                         pieces[p].weights.end(),
-                                         0.),
+                         pieces[p].length,
                          states[p].contact_length});
     const auto all          = Utilities::MPI::gather(communicator, local, 0);
     const auto all_touching = Utilities::MPI::gather(communicator, touching, 0);
