@@ -288,9 +288,38 @@ namespace bsmpm
       for (unsigned int r = 0; r < 2; ++r)
         tau_g[i][r] =
           tau[r][0] * kin.gradients[i][0] + tau[r][1] * kin.gradients[i][1];
+    // F-bar, variationally: the point's virtual strain is the variation of
+    // its trial strain, F-bar's volumetric shift included, so the force is
+    // the derivative of the points' incremental energy and the tangent its
+    // symmetric Hessian (Moran, Ortiz and Shih 1990). The volumetric part
+    // tr(tau) / 3 div(v) thus takes the divergence at the centroid,
+    // tr(tau) / 3 (g_c - g), g_c = f_c^-T grad N there. Taking the point's
+    // own divergence instead (de Souza Neto et al. 1996) leaves an
+    // unsymmetric tangent that is indefinite in plastic flow at large
+    // increments, where Newton's corrections then climb the energy and
+    // cycle (doc/finite-strain.md, "F-bar").
+    const bool   f_bar  = strain.use_b_bar;
+    const double tr_tau = trace(tau);
+    double       shift[n];
     for (unsigned int a = 0; a < n; ++a)
-      f[a] += c * (tau_g[a][kernel.component(a)] -
+      shift[a] = f_bar ? strain.centroid_gradients[a][kernel.component(a)] -
+                           kin.gradients[a][kernel.component(a)] :
+                         0.;
+    for (unsigned int a = 0; a < n; ++a)
+      f[a] += c * (tau_g[a][kernel.component(a)] + tr_tau / 3 * shift[a] -
                    body_force[kernel.component(a)] * N[kernel.vertex(a)]);
+    // The zz row of the tangent, for tr(delta tau): (xx, yy, xy) columns,
+    // the xy column counted twice, and D_zz : 1.
+    Tensor<1, 3> D_zz;
+    double       D1_zz = 0;
+    if (f_bar)
+      {
+        for (unsigned int col = 0; col < 3; ++col)
+          D_zz[col] = response.tangent[2][2][index[col][0]][index[col][1]] *
+                      (col == 2 ? 2. : 1.);
+        D1_zz = response.tangent[2][2][0][0] + response.tangent[2][2][1][1] +
+                response.tangent[2][2][2][2];
+      }
     for (unsigned int b = 0; b < n; ++b)
       {
         // The unit increment of DoF b (component k) gives
@@ -313,6 +342,27 @@ namespace bsmpm
             const unsigned int  i = kernel.component(a);
             const Tensor<1, 2> &g = kin.gradients[a];
             K(a, b) += c * (row[i] * g - tau_g[b][i] * g[k]);
+          }
+        if (f_bar)
+          {
+            // The derivative of tr(tau) / 3 (g_c - g)_i: delta tr(tau) from
+            // the in-plane strain change and the shift, and delta g_a =
+            // -g_b (g_a)_k, delta g_c,a likewise with the centroid's.
+            const double volumetric =
+              (strain.centroid_gradients[b][k] - kin.gradients[b][k]) / 3;
+            const double tr_dtau = dtau[0] + dtau[1] +
+                                   D_zz * (kin.log_derivative * S) +
+                                   volumetric * D1_zz;
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                const unsigned int i = kernel.component(a);
+                K(a, b) +=
+                  c / 3 *
+                  (tr_dtau * shift[a] +
+                   tr_tau * (kin.gradients[b][i] * kin.gradients[a][k] -
+                             strain.centroid_gradients[b][i] *
+                               strain.centroid_gradients[a][k]));
+              }
           }
       }
     return true;

@@ -116,13 +116,12 @@ namespace bsmpm
     /** Those points by active_cell_index(). */
     using SupportBands = std::vector<std::vector<SupportBandPoint>>;
 
-    /** Whether the material's tangent is symmetric: not with F-bar or a
-     * model without a symmetric tangent (doc/finite-strain.md). */
+    /** Whether the material's tangent is symmetric: where the model's is
+     * (F-bar in finite strain keeps it so, add_finite_strain_point()). */
     bool
     symmetric_tangent() const
     {
-      return model.symmetric_tangent() &&
-             !(b_bar && point_kinematics == Kinematics::finite_strain);
+      return model.symmetric_tangent();
     }
 
     /** Finite strain: the body force per unit reference volume (rho_0
