@@ -103,8 +103,7 @@ namespace bsmpm
         return 0;
       }
     // Small strain: the sums (SmallStrainCellSums) make K and f at the end;
-    // finite strain sums K and f point by point (its tangent is not
-    // symmetric in general).
+    // finite strain sums K and f point by point.
     SmallStrainCellSums sums;
     const bool          small = point_kinematics == Kinematics::small_strain;
     // The Voigt tangent of a point that yields, row by row.
