@@ -55,6 +55,29 @@ namespace bsmpm
     const double limit = coefficient * traction.pressure;
     const double sign  = trial > 0 ? 1. : -1.;
     traction.sliding   = std::abs(trial) > limit;
+    if (friction == Friction::rough)
+      {
+        // A rough surface is Coulomb's law smoothed: t_T = mu p tanh(x),
+        // x = t_trial / (mu p). Sticking (|x| << 1) is the penalty's to
+        // within x^2 / 3, and the traction turns into mu p without a kink,
+        // so Newton does not switch places between sticking and sliding
+        // from one iteration to the next where a place barely presses (the
+        // deep penetration at h = 0.0625 stopped at step 81 with the kink,
+        // completes with this law: doc/contact.md).
+        if (!(limit > 0))
+          {
+            traction.d_tangential_d_pressure = sign * coefficient;
+            return traction;
+          }
+        const double x                   = trial / limit;
+        const double th                  = std::tanh(x);
+        const double sech                = 1 - th * th;
+        traction.tangential              = limit * th;
+        traction.d_tangential_d_slip     = -eps * sech;
+        traction.d_tangential_d_previous = sech;
+        traction.d_tangential_d_pressure = coefficient * (th - x * sech);
+        return traction;
+      }
     if (traction.sliding)
       {
         // t_T = mu p sign(t_trial): its derivative is p's.

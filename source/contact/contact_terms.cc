@@ -198,17 +198,18 @@ namespace bsmpm
     // The tangential traction t_T T_i: T_i = -d(L s)/du_i, and while
     // sliding t_T follows p.
     state.sliding        = traction.sliding;
-    state.symmetric      = !state.sliding;
+    state.symmetric      = traction.d_tangential_d_pressure == 0.;
     state.tangential     = traction.tangential;
     state.sliding_length = state.sliding ? length : 0.;
+    // dt_T = dt_T/dp dp + dt_T/ds ds (Coulomb: one of the two is zero).
     for (unsigned int i = 0; i < n; ++i)
       {
         state.force[i] += state.tangential * T[i];
         for (unsigned int j = 0; j < n; ++j)
-          state.stiffness(i, j) +=
-            state.sliding ? traction.d_tangential_d_pressure *
-                              -traction.d_pressure_d_gap / L * T[i] * G[j] :
-                            -traction.d_tangential_d_slip / L * T[i] * T[j];
+          state.stiffness(i, j) += (traction.d_tangential_d_pressure *
+                                      -traction.d_pressure_d_gap * G[j] -
+                                    traction.d_tangential_d_slip * T[j]) /
+                                   L * T[i];
       }
     // Where the outline turns, t_q turns with n_q (dn/dx = t t^T / rho,
     // dt/dx = -n t^T / rho): T_i and, while sticking, the trial traction
@@ -224,7 +225,7 @@ namespace bsmpm
         const double        w = piece.weights[q] / rho;
         const double        trial_turning =
           law.trial_traction(piece.previous[q] * nq, (u[q] - rigid) * nq);
-        const double c  = state.sliding ? 0. : trial_turning / L;
+        const double c  = traction.d_tangential_d_previous * trial_turning / L;
         state.symmetric = false;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j < n; ++j)
@@ -331,17 +332,20 @@ namespace bsmpm
             const bool sliding = traction.sliding;
             t_T                = traction.tangential;
             state.sliding      = state.sliding || sliding;
-            state.symmetric    = state.symmetric && !sliding;
+            state.symmetric =
+              state.symmetric && traction.d_tangential_d_pressure == 0.;
             state.sliding_length += sliding ? w : 0.;
             for (unsigned int e = 0; e < 2; ++e)
               state.end_sliding[e] += sliding ? w * phi[e] : 0.;
             state.tangential += w * t_T;
+            // dt_T = dt_T/dp dp + dt_T/ds ds (Coulomb: one of the two is
+            // zero).
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
                 state.stiffness(i, j) +=
-                  sliding ? w * traction.d_tangential_d_pressure *
-                              -traction.d_pressure_d_gap * T[i] * G[j] :
-                            w * -traction.d_tangential_d_slip * T[i] * T[j];
+                  w * (traction.d_tangential_d_pressure *
+                         -traction.d_pressure_d_gap * T[i] * G[j] -
+                       traction.d_tangential_d_slip * T[i] * T[j]);
             // Where the outline turns, the tangent t turns with n:
             // dn/dx = t t^T / rho and dt/dx = -n t^T / rho, which the force
             // t_T t . N_i and, while sticking, the trial traction
@@ -350,9 +354,8 @@ namespace bsmpm
             if (std::isfinite(rho) && rho > 0)
               {
                 const double trial_turning =
-                  sliding ? 0. :
-                            law.trial_traction(piece.previous[q] * nq,
-                                               (u - rigid) * nq);
+                  traction.d_tangential_d_previous *
+                  law.trial_traction(piece.previous[q] * nq, (u - rigid) * nq);
                 state.symmetric = false;
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)

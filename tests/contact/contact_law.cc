@@ -1,8 +1,9 @@
 // ContactLaw: the contact law alone, without grid, curve or body
 // (doc/contact.md): the normal penalty and the augmented Lagrangian's
 // pressure, Coulomb's return map (stick, slip with |t_T| = mu p against the
-// slip, rough, smooth), and its derivatives against central differences in
-// each regime, which a sign or factor error in any of them would fail.
+// slip, rough (smoothed), smooth), and its derivatives against central
+// differences in each regime, which a sign or factor error in any of them would
+// fail.
 
 #include <bsmpm/contact/contact_law.h>
 
@@ -143,16 +144,34 @@ namespace
     const ContactLaw smooth = law(ContactLaw::Friction::smooth);
     {
       LogStream::Prefix prefix("rough");
-      // Sticks while |t_trial| <= 10 p: t_T = t_prev - eps s.
+      // Coulomb with mu = 10 smoothed: t_T = 10 p tanh(t_trial / (10 p)),
+      // t_trial = t_prev - eps s.
+      const auto smoothed = [](const ContactLaw::Traction &t,
+                               const double                trial) {
+        const double limit =
+          ContactLaw::rough_friction_coefficient * t.pressure;
+        return limit * std::tanh(trial / limit);
+      };
+      // Where it presses hard, t_T is the penalty's stick traction to
+      // within (x^2 / 3), x = t_trial / (10 p).
+      const ContactLaw::Traction hard =
+        rough.evaluate(-0.2, 0.005, state(0, 0.3));
+      print("g = -0.2, s = 0.005", hard);
+      const double trial_hard = 0.3 - eps * 0.005;
+      deallog << "t_T = t_prev - eps s within 1e-4: "
+              << yes_no(std::abs(hard.tangential - trial_hard) <
+                        1e-4 * std::abs(trial_hard))
+              << std::endl;
       const ContactLaw::Traction t = rough.evaluate(-0.02, 0.15, state(0, 0.3));
       print("s = 0.15", t);
-      deallog << "t_T = t_prev - eps s: "
-              << yes_no(std::abs(t.tangential - (0.3 - eps * 0.15)) < 1e-12)
+      deallog << "t_T = 10 p tanh(t_trial / 10 p): "
+              << yes_no(std::abs(t.tangential - smoothed(t, 0.3 - eps * 0.15)) <
+                        1e-12)
               << std::endl;
-      // Beyond, |t_T| = 10 p: the traction vanishes with the pressure, as
-      // a place starts or stops touching, instead of jumping there.
-      const ContactLaw::Traction u = rough.evaluate(-0.02, 0.5, state(0, 0.3));
-      print("s = 0.5", u);
+      // Far beyond, |t_T| -> 10 p: the traction vanishes with the pressure,
+      // as a place starts or stops touching, instead of jumping there.
+      const ContactLaw::Traction u = rough.evaluate(-0.02, 5, state(0, 0.3));
+      print("s = 5", u);
       deallog << "t_T = -10 p: "
               << yes_no(std::abs(u.tangential +
                                  ContactLaw::rough_friction_coefficient *
@@ -285,6 +304,13 @@ namespace
                                       ContactLaw::Method::penalty,
                                       -0.02,
                                       0.5,
+                                      0,
+                                      0.3},
+                                     {"rough, between sticking and sliding",
+                                      ContactLaw::Friction::rough,
+                                      ContactLaw::Method::penalty,
+                                      -0.02,
+                                      0.15,
                                       0,
                                       0.3},
                                      {"smooth",

@@ -27,7 +27,9 @@ namespace bsmpm
    *
    * a rough surface has mu = rough_friction_coefficient (10: it slides
    * only where it barely touches, and its traction stays continuous as a
-   * place starts or stops touching), a smooth one has t_T = 0.
+   * place starts or stops touching) and the smoothed law
+   * t_T = mu p tanh(t_trial / (mu p)), without the kink between sticking
+   * and sliding; a smooth one has t_T = 0.
    * The traction on the curve is p n + t_T t, n the rigid outline's
    * outward normal and t = (-n_y, n_x); s is the slip along t.
    */
@@ -51,7 +53,7 @@ namespace bsmpm
     {
       smooth,     ///< no tangential traction
       frictional, ///< Coulomb: |t_T| <= mu p_N, sliding beyond
-      rough       ///< Coulomb with mu = rough_friction_coefficient
+      rough       ///< Coulomb with mu = rough_friction_coefficient, smoothed
     };
 
     /** What the last increment (and, for the multiplier, the last
@@ -77,7 +79,8 @@ namespace bsmpm
       /** dp/dg: -eps wherever active (also where p is zero within
        * round-off). */
       double d_pressure_d_gap = 0;
-      /** dt_T/ds: -eps while sticking, zero while sliding. */
+      /** dt_T/ds: -eps while sticking, zero while sliding (Coulomb; the
+       * smoothed rough law has all three derivatives). */
       double d_tangential_d_slip = 0;
       /** dt_T/dt_prev: one while sticking, zero while sliding. */
       double d_tangential_d_previous = 0;
