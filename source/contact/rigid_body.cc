@@ -113,9 +113,11 @@ namespace bsmpm
                           "Coulomb friction with the Friction coefficient "
                           "(sticking while |t_T| <= mu p_N, sliding "
                           "beyond); rough: Coulomb friction with mu = 10, "
-                          "no sliding where it presses (a bound that keeps "
-                          "the traction continuous where the body starts or "
-                          "stops touching, doc/contact.md).");
+                          "smoothed (t_T = 10 p tanh(t_trial / 10 p)): no "
+                          "sliding where it presses, a traction that stays "
+                          "continuous where the body starts or stops "
+                          "touching, and no kink between sticking and "
+                          "sliding (doc/contact.md).");
         prm.declare_entry("Friction coefficient",
                           "0.3",
                           Patterns::Double(0.),
