@@ -198,7 +198,7 @@ namespace bsmpm
     // The tangential traction t_T T_i: T_i = -d(L s)/du_i, and while
     // sliding t_T follows p.
     state.sliding        = traction.sliding;
-    state.symmetric      = traction.d_tangential_d_pressure == 0.;
+    state.symmetric      = traction.symmetric();
     state.tangential     = traction.tangential;
     state.sliding_length = state.sliding ? length : 0.;
     // dt_T = dt_T/dp dp + dt_T/ds ds (Coulomb: one of the two is zero).
@@ -206,8 +206,7 @@ namespace bsmpm
       {
         state.force[i] += state.tangential * T[i];
         for (unsigned int j = 0; j < n; ++j)
-          state.stiffness(i, j) += (traction.d_tangential_d_pressure *
-                                      -traction.d_pressure_d_gap * G[j] -
+          state.stiffness(i, j) -= (traction.d_tangential_d_gap() * G[j] +
                                     traction.d_tangential_d_slip * T[j]) /
                                    L * T[i];
       }
@@ -332,8 +331,7 @@ namespace bsmpm
             const bool sliding = traction.sliding;
             t_T                = traction.tangential;
             state.sliding      = state.sliding || sliding;
-            state.symmetric =
-              state.symmetric && traction.d_tangential_d_pressure == 0.;
+            state.symmetric    = state.symmetric && traction.symmetric();
             state.sliding_length += sliding ? w : 0.;
             for (unsigned int e = 0; e < 2; ++e)
               state.end_sliding[e] += sliding ? w * phi[e] : 0.;
@@ -342,10 +340,10 @@ namespace bsmpm
             // zero).
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
-                state.stiffness(i, j) +=
-                  w * (traction.d_tangential_d_pressure *
-                         -traction.d_pressure_d_gap * T[i] * G[j] -
-                       traction.d_tangential_d_slip * T[i] * T[j]);
+                state.stiffness(i, j) -= w *
+                                         (traction.d_tangential_d_gap() * G[j] +
+                                          traction.d_tangential_d_slip * T[j]) *
+                                         T[i];
             // Where the outline turns, the tangent t turns with n:
             // dn/dx = t t^T / rho and dt/dx = -n t^T / rho, which the force
             // t_T t . N_i and, while sticking, the trial traction

@@ -170,8 +170,7 @@ namespace bsmpm
         node.traction = law.evaluate(node.gap / W, node.slip / W, history);
         if (!node.traction.active)
           continue;
-        state.symmetric =
-          state.symmetric && node.traction.d_tangential_d_pressure == 0.;
+        state.symmetric = state.symmetric && node.traction.symmetric();
         if (law.has_friction())
           for (const auto &v : node.vectors)
             if (v[2] != 0 || v[3] != 0)

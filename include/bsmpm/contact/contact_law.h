@@ -87,11 +87,20 @@ namespace bsmpm
       /** dt_T/dp: mu sign(t_trial) while sliding, zero while sticking. */
       double d_tangential_d_pressure = 0;
 
-      /** dt_T/dg, through the pressure: nonzero only while sliding. */
+      /** dt_T/dg, through the pressure: nonzero only while sliding
+       * (Coulomb) or wherever a rough surface touches (smoothed). */
       double
       d_tangential_d_gap() const
       {
         return d_tangential_d_pressure * d_pressure_d_gap;
+      }
+
+      /** Whether the place's tangent is symmetric: dt_T/dg is zero (the
+       * normal gap does not drive the tangential traction). */
+      bool
+      symmetric() const
+      {
+        return d_tangential_d_pressure == 0.;
       }
     };
 
