@@ -68,6 +68,7 @@ namespace bsmpm
         touch.sliding_length = state.sliding_length;
         touch.sliding        = state.sliding;
         touch.resultant      = state.resultant;
+        touch.moment         = state.moment;
         touches.push_back(touch);
       }
     return touches;
@@ -89,8 +90,9 @@ namespace bsmpm
     // pressure the discretisation holds. sum_k T_k W_k = int t ds, the
     // force. Per crossing of a piece: body, curve, key, W, int phi t ds
     // (x, y), int phi ds where it slides, int phi g ds, the crossing's
-    // place (x, y) and the outline's normal there (x, y).
-    constexpr unsigned int width = 12;
+    // place (x, y), the outline's normal there (x, y) and int phi x x t
+    // ds (the crossings' moments sum to the force's).
+    constexpr unsigned int width = 13;
     std::vector<double>    local;
     for (unsigned int p = 0; p < pieces.size(); ++p)
       for (unsigned int e = 0; e < 2; ++e)
@@ -110,7 +112,8 @@ namespace bsmpm
                         state.end_places[e][0],
                         state.end_places[e][1],
                         state.end_normals[e][0],
-                        state.end_normals[e][1]});
+                        state.end_normals[e][1],
+                        state.end_moments[e]});
         }
     // The length in contact: a touching piece between two crossings that
     // touching pieces share on both sides (inside a touching stretch)
@@ -164,8 +167,9 @@ namespace bsmpm
           auto &sum = at->second;
           for (unsigned int j = 3; j < 8; ++j)
             sum[j] += part[i + j];
+          sum[12] += part[i + 12];
           if (added)
-            for (unsigned int j = 8; j < width; ++j)
+            for (unsigned int j = 8; j < 12; ++j)
               sum[j] = part[i + j];
         }
     std::vector<Touch> touches;
@@ -190,6 +194,7 @@ namespace bsmpm
         touch.sliding_length = sum[6];
         touch.sliding        = sum[6] > 0;
         touch.resultant      = force;
+        touch.moment         = sum[12];
         touches.push_back(touch);
       }
     return touches;
@@ -202,17 +207,20 @@ namespace bsmpm
                           const std::vector<double> &local_penetration,
                           const MPI_Comm             communicator)
   {
-    const unsigned int  n_bodies = resultants.size();
-    std::vector<double> sums(4 * n_bodies, 0.);
-    std::vector<double> penetration = local_penetration;
+    const unsigned int     n_bodies = resultants.size();
+    constexpr unsigned int per_body = 5;
+    std::vector<double>    sums(per_body * n_bodies, 0.);
+    std::vector<double>    penetration = local_penetration;
     piece_rows.clear();
     for (const Touch &touch : touches)
       {
         // The rigid body feels the opposite of what the curve feels.
-        sums[4 * touch.body + 0] -= touch.resultant[0];
-        sums[4 * touch.body + 1] -= touch.resultant[1];
-        sums[4 * touch.body + 2] += touch.contact_length;
-        sums[4 * touch.body + 3] += touch.sliding_length;
+        double *sum = &sums[per_body * touch.body];
+        sum[0] -= touch.resultant[0];
+        sum[1] -= touch.resultant[1];
+        sum[2] += touch.contact_length;
+        sum[3] += touch.sliding_length;
+        sum[4] -= touch.moment;
         piece_rows.insert(piece_rows.end(),
                           {double(touch.body + 1),
                            double(touch.curve + 1),
@@ -231,9 +239,11 @@ namespace bsmpm
     Utilities::MPI::max(penetration, communicator, penetration);
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        resultants[b].force = Tensor<1, 2>({sums[4 * b + 0], sums[4 * b + 1]});
-        resultants[b].contact_length = sums[4 * b + 2];
-        resultants[b].sliding_length = sums[4 * b + 3];
+        const double *sum            = &sums[per_body * b];
+        resultants[b].force          = Tensor<1, 2>({sum[0], sum[1]});
+        resultants[b].contact_length = sum[2];
+        resultants[b].sliding_length = sum[3];
+        resultants[b].moment         = sum[4];
         resultants[b].penetration    = penetration[b];
       }
   }
@@ -247,10 +257,13 @@ namespace bsmpm
   {
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-        const std::string &name              = bodies[b].name();
-        const Tensor<1, 2> u                 = motion.end(b);
-        quantities[name + "_force_x"]        = resultants[b].force[0];
-        quantities[name + "_force_y"]        = resultants[b].force[1];
+        const std::string &name       = bodies[b].name();
+        const Tensor<1, 2> u          = motion.end(b);
+        quantities[name + "_force_x"] = resultants[b].force[0];
+        quantities[name + "_force_y"] = resultants[b].force[1];
+        quantities[name + "_moment"] =
+          resultants[b].moment -
+          moment_about_origin(bodies[b].centroid(u), resultants[b].force);
         quantities[name + "_displacement_x"] = u[0];
         quantities[name + "_displacement_y"] = u[1];
         quantities[name + "_contact_length"] = resultants[b].contact_length;

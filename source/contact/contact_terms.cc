@@ -176,6 +176,9 @@ namespace bsmpm
             T[i] += piece.weights[q] * (tq * N[q][i]);
           }
         state.resultant += piece.weights[q] * state.pressure * nq;
+        state.moment +=
+          moment_about_origin(piece.positions[q] + u[q],
+                              piece.weights[q] * state.pressure * nq);
         // p dn/dx with dn/dx = (I - n n) / rho where the surface turns.
         const double rho = surface[q].turning_radius;
         if (std::isfinite(rho) && rho > 0)
@@ -191,7 +194,7 @@ namespace bsmpm
         for (unsigned int j = 0; j < n; ++j)
           state.stiffness(i, j) += -traction.d_pressure_d_gap / L * G[i] * G[j];
       }
-    add_tilt_terms(piece, N, surface, state);
+    add_tilt_terms(piece, N, u, surface, state);
     if (!law.has_friction())
       return state;
 
@@ -236,8 +239,10 @@ namespace bsmpm
       if (piece.touching[q])
         {
           const Tensor<1, 2> &nq = surface[q].normal;
-          state.resultant +=
+          const Tensor<1, 2>  force =
             piece.weights[q] * state.tangential * Tensor<1, 2>({-nq[1], nq[0]});
+          state.resultant += force;
+          state.moment += moment_about_origin(piece.positions[q] + u[q], force);
         }
     return state;
   }
@@ -377,10 +382,14 @@ namespace bsmpm
                 w * p / rho * (N[i] * N[j] - (nq * N[i]) * (nq * N[j]));
         const Tensor<1, 2> t = p * nq + t_T * tq;
         state.resultant += w * t;
+        const double moment =
+          moment_about_origin(piece.positions[q] + u, w * t);
+        state.moment += moment;
         for (unsigned int e = 0; e < 2; ++e)
           {
             state.end_gaps[e] += w * phi[e] * surface.gap;
             state.end_tractions[e] += w * phi[e] * t;
+            state.end_moments[e] += phi[e] * moment;
           }
       }
     for (unsigned int e = 0; e < 2; ++e)
@@ -402,6 +411,7 @@ namespace bsmpm
   void
   ContactTerms::add_tilt_terms(const ContactPiece              &piece,
                                const std::vector<ShapeValues>  &N,
+                               const std::vector<Tensor<1, 2>> &u,
                                const std::vector<SurfacePoint> &surface,
                                ContactPieceState               &state) const
   {
@@ -451,8 +461,10 @@ namespace bsmpm
           for (unsigned int i = 0; i < n; ++i)
             H[i] += piece.weights[q] * xi[q] * (nq * N[q][i]);
           // The traction -eps_t m / I xi n on the curve.
-          state.resultant +=
+          const Tensor<1, 2> force =
             piece.weights[q] * (-tilt_penalty * m / I * xi[q]) * nq;
+          state.resultant += force;
+          state.moment += moment_about_origin(piece.positions[q] + u[q], force);
           const double rho = surface[q].turning_radius;
           if (std::isfinite(rho) && rho > 0)
             for (unsigned int i = 0; i < n; ++i)

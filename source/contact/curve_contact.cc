@@ -576,6 +576,7 @@ namespace bsmpm
         touch.sliding        = here.sliding;
         touch.sliding_length = here.sliding ? points[q].weight : 0.;
         touch.resultant      = points[q].weight * here.traction();
+        touch.moment         = moment_about_origin(here.x, touch.resultant);
         touches.push_back(touch);
       }
     // The largest mean penetration of a node (the same on all processes).

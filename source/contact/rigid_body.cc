@@ -356,4 +356,26 @@ namespace bsmpm
       p += translation;
     return line;
   }
+
+
+
+  Point<2>
+  RigidBody::centroid(const Tensor<1, 2> &translation) const
+  {
+    // The shoelace formulas over the closed polyline (a circle's and a
+    // rounded corner's arcs sampled: symmetric samples keep a circle's
+    // centre exact).
+    const std::vector<Point<2>> line = outline(translation);
+    double                      area = 0;
+    Tensor<1, 2>                first_moment;
+    for (unsigned int i = 0; i < line.size(); ++i)
+      {
+        const Point<2> &a     = line[i];
+        const Point<2> &b     = line[(i + 1) % line.size()];
+        const double    cross = a[0] * b[1] - b[0] * a[1];
+        area += cross / 2;
+        first_moment += cross / 6 * (a + b);
+      }
+    return Point<2>(first_moment / area);
+  }
 } // namespace bsmpm

@@ -51,6 +51,9 @@ namespace bsmpm
       bool   sliding        = false;
       /** The traction's integral: the force on the curve. */
       Tensor<1, 2> resultant;
+      /** Its moment about the origin (the traction's, integrated along
+       * the curve). */
+      double moment = 0;
     };
 
     /** No results yet (zeros) for @p n_bodies bodies. */
@@ -73,8 +76,10 @@ namespace bsmpm
             const MPI_Comm             communicator);
 
     /** Adds rigid_body_N_force_x/y (the force of the body on the rigid
-     * body, N/m), _displacement_x/y (where @p motion has it),
-     * _contact_length, _sliding_length and _penetration (the largest). */
+     * body, N/m), _moment (that force's moment about the centroid of the
+     * rigid outline where @p motion has it, N m/m, counter-clockwise
+     * positive), _displacement_x/y, _contact_length, _sliding_length and
+     * _penetration (the largest). */
     void
     record(const std::vector<RigidBody>  &bodies,
            const RigidBodyMotion         &motion,
@@ -109,9 +114,11 @@ namespace bsmpm
     struct Resultant
     {
       Tensor<1, 2> force;
-      double       contact_length = 0;
-      double       sliding_length = 0;
-      double       penetration    = 0;
+      /** The force's moment about the origin. */
+      double moment         = 0;
+      double contact_length = 0;
+      double sliding_length = 0;
+      double penetration    = 0;
     };
     std::vector<Resultant> resultants;
     /** The pieces' figures on this process: body, curve, x, y, n_x, n_y,

@@ -22,6 +22,14 @@ namespace bsmpm
 {
   using namespace dealii;
 
+  /** The moment about the origin of a force @p f at @p x in the plane
+   * (its z component). */
+  inline double
+  moment_about_origin(const Tensor<1, 2> &x, const Tensor<1, 2> &f)
+  {
+    return x[0] * f[1] - x[1] * f[0];
+  }
+
   /** What contact does on a piece for a displacement increment
    * (ContactTerms::evaluate()). */
   struct ContactPieceState
@@ -46,6 +54,9 @@ namespace bsmpm
     /** Force on the body (N) and the piece's share of the rigid body's
      * reaction is its opposite. */
     Tensor<1, 2> resultant;
+    /** That force's moment about the origin, int x x t ds (x the Gauss
+     * points' places after the increment, t the traction on the body). */
+    double moment = 0;
     /** On the cell's DoFs and, as two more, the body's translation
      * (x, y) at the increment's end: the force and minus its
      * derivative. */
@@ -67,6 +78,8 @@ namespace bsmpm
     std::array<Tensor<1, 2>, 2> end_normals;
     std::array<double, 2>       end_weighted_gaps = {{0, 0}};
     std::array<double, 2>       end_sliding       = {{0, 0}};
+    /** The moment's share of each crossing: int phi x x t ds. */
+    std::array<double, 2> end_moments = {{0, 0}};
   };
 
 
@@ -183,10 +196,11 @@ namespace bsmpm
     /** Adds to @p state the force and stiffness of the penalty on the
      * tilt of the gap along the piece's touching part (Contact/Tilt
      * penalty), @p N the shape values of the Gauss points on the cell's
-     * DoFs and the body's translation. */
+     * DoFs and the body's translation, @p u their displacements. */
     void
     add_tilt_terms(const ContactPiece              &piece,
                    const std::vector<ShapeValues>  &N,
+                   const std::vector<Tensor<1, 2>> &u,
                    const std::vector<SurfacePoint> &surface,
                    ContactPieceState               &state) const;
 

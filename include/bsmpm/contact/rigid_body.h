@@ -190,6 +190,11 @@ namespace bsmpm
     std::vector<Point<2>>
     outline(const Tensor<1, 2> &translation) const;
 
+    /** The centroid of the area inside that outline: where the moments of
+     * the contact forces on the body are taken. */
+    Point<2>
+    centroid(const Tensor<1, 2> &translation) const;
+
     Friction
     friction() const
     {

@@ -3,7 +3,9 @@
 
 1. Stick: the block on a plane inclined by theta with tan(theta) = 0.2 <
    mu = 0.3 stays: the run converges and the force on the plane equals the
-   block's weight, in size (rho |g| A) and direction.
+   block's weight, in size (rho |g| A) and direction; its moment about the
+   plane's centroid is that of a force through the block's centroid (the
+   weight's line of action), to 1 % of |F| times their distance.
 2. The same on a rough plane: nothing slides.
 3. Slip: the plane is dragged sideways by 0.02 m under the block (gravity
    upright) while the grid's left face holds the block's left side: the
@@ -73,10 +75,27 @@ def check_weight(name, q, g):
         problems.append(f"{name}: the force is not along gravity")
 
 
+def check_moment(name, q):
+    # The block's centroid (0, 0.35) less the plane's (0, -0.45): the
+    # weight's line of action passes through the block's, and so does the
+    # force of the block on the plane (the block moves by about a
+    # millimetre, a tenth of the tolerance).
+    arm = (0.0, 0.8)
+    fx, fy = q["rigid_body_1_force_x"], q["rigid_body_1_force_y"]
+    expected = arm[0] * fy - arm[1] * fx
+    moment = q["rigid_body_1_moment"]
+    print(f"  moment about the plane's centroid {moment:.6g} N m/m, "
+          f"through the block's centroid {expected:.6g}")
+    if abs(moment - expected) > 0.01 * math.hypot(fx, fy) * math.hypot(*arm):
+        problems.append(f"{name}: the force does not act through the "
+                        "block's centroid")
+
+
 g = (1.92339, -9.61694)
 q = case("stick, frictional", [])
 if q:
     check_weight("stick, frictional", q, g)
+    check_moment("stick, frictional", q)
 q = case("stick, rough", ["Rigid body 1/Friction=rough"])
 if q:
     check_weight("stick, rough", q, g)

@@ -4,8 +4,9 @@ complete at every --np given with no increment accepted stalled, the
 penetration resistance V / (D c_u) = 2 F_y / (D c_u) must not fall by more
 than --max-dip (relative) from one step to the next (a smooth curve; the
 clay's resistance grows with the depth), and the runs at several np must
-give the same force to --agree. Prints V / (D c_u) and the contact length
-per step.
+give the same force to --agree. A smooth pipe's tractions are normal to
+the circle: their moment about its centre must vanish (to 1e-9 of F D).
+Prints V / (D c_u) and the contact length per step.
 
 Usage: check_pipe.py --bsmpm B --prm prm/pipe-penetration.prm
          [--np 1 2] [--set ...]
@@ -52,6 +53,17 @@ for np in args.np:
     print(f"np = {np}: V / (D c_u) and contact length (m) per step")
     print(" ".join(f"{v:.3f}/{s['quantities']['rigid_body_1_contact_length']:.2f}"
                    for v, s in zip(V, steps)))
+    # The scene's pipe is smooth unless a --set gives it friction.
+    if not any("Friction=" in s and not s.endswith("=smooth")
+               for s in args.set):
+        worst = max(abs(s["quantities"]["rigid_body_1_moment"]) /
+                    (args.diameter * max(abs(s["quantities"]["rigid_body_1_force_x"]),
+                                         abs(s["quantities"]["rigid_body_1_force_y"])))
+                    for s in steps)
+        print(f"np = {np}: largest |M| / (|F| D) about the centre {worst:.1e}")
+        if worst > 1e-9:
+            problems.append(f"np = {np}: the smooth pipe's tractions have a "
+                            f"moment about its centre ({worst:.1e} of F D)")
     dips = [(s["step"], round(b / a - 1, 4))
             for s, a, b in zip(steps[1:], V, V[1:]) if b < (1 - args.max_dip) * a]
     if dips:
