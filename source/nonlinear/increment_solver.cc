@@ -370,33 +370,53 @@ namespace bsmpm
     const bool positive_tangent =
       update.kinematics() == ConstitutiveUpdate::Kinematics::small_strain &&
       update.symmetric_tangent() && assembly.contact_tangent_symmetric();
+    // With the augmented Lagrangian the solves before a multiplier update
+    // stop at a looser residual (CurveContact::tolerance_between_updates()):
+    // the update moves the increment by more than what they leave.
+    double               looser = parts.contact != nullptr ?
+                                    parts.contact->tolerance_between_updates() :
+                                    0.;
     NewtonSolver::Result result = parts.newton.solve(start.reference,
                                                      residual,
                                                      correct,
                                                      step_back,
                                                      slope,
                                                      start.norm,
-                                                     positive_tangent);
+                                                     positive_tangent,
+                                                     looser);
+    const auto           go_on  = [&]() {
+      NewtonSolver::Result more = parts.newton.solve(start.reference,
+                                                     residual,
+                                                     correct,
+                                                     step_back,
+                                                     slope,
+                                                     residual(),
+                                                     positive_tangent,
+                                                     looser);
+      result.iterations.insert(result.iterations.end(),
+                               more.iterations.begin(),
+                               more.iterations.end());
+      result.converged = more.converged;
+      result.failure   = more.failure;
+    };
     // Which Gauss points of the curves touch a rigid body is fixed within
     // the iterations, and so are the augmented Lagrangian's multipliers
     // (CurveContact): where the converged increment changes them, iterate
-    // on from there (CurveContact bounds how often).
-    while (parts.contact != nullptr && result.converged &&
-           parts.contact->after_convergence(
-             grid, assembly.kernel(), increment, prescribed))
+    // on from there (CurveContact bounds how often). Once they stand, the
+    // iterations go on to the Newton tolerance, and the parts and the
+    // multipliers are checked again there.
+    for (;;)
       {
-        NewtonSolver::Result more = parts.newton.solve(start.reference,
-                                                       residual,
-                                                       correct,
-                                                       step_back,
-                                                       slope,
-                                                       residual(),
-                                                       positive_tangent);
-        result.iterations.insert(result.iterations.end(),
-                                 more.iterations.begin(),
-                                 more.iterations.end());
-        result.converged = more.converged;
-        result.failure   = more.failure;
+        while (parts.contact != nullptr && result.converged &&
+               parts.contact->after_convergence(
+                 grid, assembly.kernel(), increment, prescribed))
+          go_on();
+        if (!result.converged || looser == 0. ||
+            result.iterations.back().relative_residual <=
+              parts.newton.residual_tolerance())
+          break;
+        looser = 0.;
+        go_on();
       }
     return result;
   }

@@ -107,10 +107,12 @@ namespace bsmpm
     const std::function<void(const double)>                &step_back,
     const std::function<double()>                          &slope,
     const double                                            initial_norm,
-    const bool positive_tangent) const
+    const bool                                              positive_tangent,
+    const double looser_tolerance) const
   {
     Result       result;
-    const double initial = reference;
+    const double initial   = reference;
+    const double tolerance = std::max(this->tolerance, looser_tolerance);
     // The caller may have assembled the system at the start already.
     double norm = initial_norm >= 0 ? initial_norm : residual();
     for (unsigned int k = 0;; ++k)

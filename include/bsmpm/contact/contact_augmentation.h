@@ -88,6 +88,13 @@ namespace bsmpm
       return unconverged_change > 0;
     }
 
+    /** 'Contact/Augmentation tolerance'. */
+    double
+    force_tolerance() const
+    {
+      return tolerance;
+    }
+
     double
     last_force_change() const
     {

@@ -180,6 +180,20 @@ namespace bsmpm
       const LinearAlgebra::distributed::Vector<double> *prescribed);
 
     /**
+     * The residual, as a fraction of the Newton tolerance's scale, to
+     * which the solves before an update of the augmented Lagrangian's
+     * multipliers need converge (0 without multipliers): a tenth of the
+     * Augmentation tolerance. The update moves the increment by much more
+     * than that residual's error, and the last solve, whose multipliers
+     * stand, converges to the Newton tolerance.
+     */
+    double
+    tolerance_between_updates() const
+    {
+      return augmented ? 0.1 * augmentation.force_tolerance() : 0.;
+    }
+
+    /**
      * After Newton iterations converged at @p increment: marks the Gauss
      * points that touch their rigid body there as the pieces' touching
      * parts. Returns whether any changed (on any process): then the

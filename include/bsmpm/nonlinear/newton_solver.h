@@ -93,6 +93,11 @@ namespace bsmpm
      * perfectly plastic mechanism); once |R| is within a hundred times the
      * tolerance such a correction is undone and the increment counts as
      * converged, instead of halving noise (doc/newton.md).
+     *
+     * @p looser_tolerance: converged already at this fraction of
+     * @p reference if it is above 'Residual tolerance' (the solves between
+     * two updates of contact multipliers, whose result the update moves
+     * anyway).
      */
     Result
     solve(const double                                            reference,
@@ -101,7 +106,8 @@ namespace bsmpm
           const std::function<void(const double)>                &step_back,
           const std::function<double()>                          &slope = {},
           const double initial_norm                                     = -1,
-          const bool   positive_tangent = false) const;
+          const bool   positive_tangent                                 = false,
+          const double looser_tolerance = 0) const;
 
     /**
      * After the iterations @p result of the load increment @p delta from
