@@ -52,8 +52,14 @@ namespace bsmpm
                 const unsigned int k1    = (k + 1) % n;
                 const auto         range = curve.spline->segment_parameters(k);
                 origin.push_back({{k, k1}});
-                new_positions.push_back(
-                  curve.spline->value((range[0] + range[1]) / 2));
+                // A segment whose ends lie on a face of the grid (a body
+                // against a roller face, its corner there) may bulge
+                // past the face between them, the spline being cubic and
+                // the face straight: the new point goes back onto the
+                // face, where the material is. Farther out than a tenth
+                // of a cell is an error (add_tracked_points()).
+                new_positions.push_back(grid.pulled_onto(
+                  curve.spline->value((range[0] + range[1]) / 2), 0.1));
                 neighbour_slots.push_back(curve.tracked_slots[k]);
                 neighbour_slots.push_back(curve.tracked_slots[k1]);
               }

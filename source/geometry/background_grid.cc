@@ -218,6 +218,22 @@ namespace bsmpm
 
 
 
+  Point<2>
+  BackgroundGrid::pulled_onto(Point<2> p, const double fraction) const
+  {
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        const double tolerance = fraction * h[d];
+        if (p[d] < corner_lower[d] && p[d] > corner_lower[d] - tolerance)
+          p[d] = corner_lower[d];
+        if (p[d] > corner_upper[d] && p[d] < corner_upper[d] + tolerance)
+          p[d] = corner_upper[d];
+      }
+    return p;
+  }
+
+
+
   bool
   BackgroundGrid::has_face_conditions() const
   {

@@ -126,6 +126,11 @@ namespace bsmpm
     bool
     contains(const Point<2> &p) const;
 
+    /** @p p, moved onto the grid's rectangle in each direction in which it
+     * lies outside by less than @p fraction of a cell; else as it is. */
+    Point<2>
+    pulled_onto(Point<2> p, const double fraction) const;
+
     /**
      * Index (i, j) of the cell that holds @p p, which must lie in the grid.
      * A point on a grid line belongs to the cell above / to the right of it,
