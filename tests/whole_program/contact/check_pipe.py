@@ -4,8 +4,8 @@ complete at every --np given with no increment accepted stalled, the
 penetration resistance V / (D c_u) = 2 F_y / (D c_u) must not fall by more
 than --max-dip (relative) from one step to the next (a smooth curve; the
 clay's resistance grows with the depth), and the runs at several np must
-give the same force to --agree. A smooth pipe's tractions are normal to
-the circle: their moment about its centre must vanish (to 1e-9 of F D).
+give the same force to --agree. A smooth circle's tractions are normal to
+it: their moment about its centre must vanish (to 1e-9 of F D).
 Prints V / (D c_u) and the contact length per step.
 
 Usage: check_pipe.py --bsmpm B --prm prm/pipe-penetration.prm
@@ -53,8 +53,10 @@ for np in args.np:
     print(f"np = {np}: V / (D c_u) and contact length (m) per step")
     print(" ".join(f"{v:.3f}/{s['quantities']['rigid_body_1_contact_length']:.2f}"
                    for v, s in zip(V, steps)))
-    # The scene's pipe is smooth unless a --set gives it friction.
-    if not any("Friction=" in s and not s.endswith("=smooth")
+    # The scene's pipe is a smooth circle unless a --set gives it friction
+    # or another shape.
+    if not any(("Friction=" in s and not s.endswith("=smooth")) or
+               ("Shape=" in s and not s.endswith("=circle"))
                for s in args.set):
         worst = max(abs(s["quantities"]["rigid_body_1_moment"]) /
                     (args.diameter * max(abs(s["quantities"]["rigid_body_1_force_x"]),
