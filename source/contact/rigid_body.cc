@@ -4,6 +4,7 @@
 #include <bsmpm/contact/rigid_body.h>
 #include <bsmpm/contact/rigid_shapes.h>
 #include <bsmpm/geometry/b_spline_curve.h>
+#include <bsmpm/geometry/polygon_area.h>
 
 #include <cmath>
 #include <limits>
@@ -362,20 +363,9 @@ namespace bsmpm
   Point<2>
   RigidBody::centroid(const Tensor<1, 2> &translation) const
   {
-    // The shoelace formulas over the closed polyline (a circle's and a
-    // rounded corner's arcs sampled: symmetric samples keep a circle's
-    // centre exact).
-    const std::vector<Point<2>> line = outline(translation);
-    double                      area = 0;
-    Tensor<1, 2>                first_moment;
-    for (unsigned int i = 0; i < line.size(); ++i)
-      {
-        const Point<2> &a     = line[i];
-        const Point<2> &b     = line[(i + 1) % line.size()];
-        const double    cross = a[0] * b[1] - b[0] * a[1];
-        area += cross / 2;
-        first_moment += cross / 6 * (a + b);
-      }
-    return Point<2>(first_moment / area);
+    // Of the closed polyline (a circle's and a rounded corner's arcs
+    // sampled: symmetric samples keep a circle's centre exact).
+    const auto [area, moment] = polygon_area_and_moment(outline(translation));
+    return Point<2>(moment / area);
   }
 } // namespace bsmpm

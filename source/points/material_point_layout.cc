@@ -1,4 +1,5 @@
 #include <bsmpm/base/parameter_tools.h>
+#include <bsmpm/geometry/polygon_area.h>
 #include <bsmpm/points/material_point_layout.h>
 
 #include <array>
@@ -249,18 +250,9 @@ namespace bsmpm
           const Tensor<1, 2>         &h = grid.cell_size();
           const std::vector<Point<2>> polygon =
             clip_cell_to_body(o, h, corners);
-          double   area = 0;
-          Point<2> centroid;
-          for (unsigned int m = 0; m < polygon.size(); ++m)
-            {
-              const Point<2> &p = polygon[m];
-              const Point<2> &q = polygon[(m + 1) % polygon.size()];
-              const double    a = p[0] * q[1] - q[0] * p[1];
-              area += a / 2;
-              centroid += a / 6 * (p + q);
-            }
+          const auto [area, moment] = polygon_area_and_moment(polygon);
           if (area > 1e-12 * h[0] * h[1])
-            f(centroid / area,
+            f(Point<2>(moment / area),
               area,
               static_cast<unsigned long>(j) * grid.n_cells(0) + i);
         }
