@@ -58,7 +58,7 @@ with tempfile.TemporaryDirectory() as tmp:
     for h in args.cell_sizes[len(summaries):]:
         summaries.append(run(h, os.path.join(tmp, f"h{h}")))
     plt.figure(figsize=(6, 4))
-    for h, path in zip(args.cell_sizes, summaries):
+    for h, path in sorted(zip(args.cell_sizes, summaries), reverse=True):
         with open(path) as f:
             steps_run = json.load(f)["steps"]
         u = [-s["quantities"]["rigid_body_1_displacement_y"] / B
