@@ -207,21 +207,21 @@ namespace
       return law.evaluate(g + dg, s + ds, state(lambda, t_prev + dt));
     };
     // {name, exact, central difference}
-    const std::array<std::array<double, 3>, 6> pairs = {
-      {{0,
-        t.d_pressure_d_gap,
-        (at(h, 0, 0).pressure - at(-h, 0, 0).pressure) / (2 * h)},
-       {1, 0., (at(0, h, 0).pressure - at(0, -h, 0).pressure) / (2 * h)},
-       {2, 0., (at(0, 0, h).pressure - at(0, 0, -h).pressure) / (2 * h)},
-       {3,
-        t.d_tangential_d_gap(),
-        (at(h, 0, 0).tangential - at(-h, 0, 0).tangential) / (2 * h)},
-       {4,
-        t.d_tangential_d_slip,
-        (at(0, h, 0).tangential - at(0, -h, 0).tangential) / (2 * h)},
-       {5,
-        t.d_tangential_d_previous,
-        (at(0, 0, h).tangential - at(0, 0, -h).tangential) / (2 * h)}}};
+    const double pairs[6][3] = {
+      {0,
+       t.d_pressure_d_gap,
+       (at(h, 0, 0).pressure - at(-h, 0, 0).pressure) / (2 * h)},
+      {1, 0., (at(0, h, 0).pressure - at(0, -h, 0).pressure) / (2 * h)},
+      {2, 0., (at(0, 0, h).pressure - at(0, 0, -h).pressure) / (2 * h)},
+      {3,
+       t.d_tangential_d_gap(),
+       (at(h, 0, 0).tangential - at(-h, 0, 0).tangential) / (2 * h)},
+      {4,
+       t.d_tangential_d_slip,
+       (at(0, h, 0).tangential - at(0, -h, 0).tangential) / (2 * h)},
+      {5,
+       t.d_tangential_d_previous,
+       (at(0, 0, h).tangential - at(0, 0, -h).tangential) / (2 * h)}};
     const char *names[] = {
       "dp/dg", "dp/ds", "dp/dt_prev", "dt_T/dg", "dt_T/ds", "dt_T/dt_prev"};
     double error = 0;

@@ -198,7 +198,7 @@ namespace drucker_prager_01
         const double c = 1e4;
         for (const std::array<double, 2> &angles :
              std::vector<std::array<double, 2>>{
-               {30., 0.}, {30., 10.}, {30., 30.}, {40., 15.}})
+               {{30., 0.}}, {{30., 10.}}, {{30., 30.}}, {{40., 15.}}})
           {
             const double phi = angles[0] * degree, psi = angles[1] * degree;
             std::string  line;
