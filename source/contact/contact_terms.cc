@@ -175,10 +175,8 @@ namespace bsmpm
             G[i] += piece.weights[q] * (nq * N[q][i]);
             T[i] += piece.weights[q] * (tq * N[q][i]);
           }
-        state.resultant += piece.weights[q] * state.pressure * nq;
-        state.moment +=
-          moment_about_origin(piece.positions[q] + u[q],
-                              piece.weights[q] * state.pressure * nq);
+        state.add_force(piece.positions[q] + u[q],
+                        piece.weights[q] * state.pressure * nq);
         // p dn/dx with dn/dx = (I - n n) / rho where the surface turns.
         const double rho = surface[q].turning_radius;
         if (std::isfinite(rho) && rho > 0)
@@ -239,10 +237,9 @@ namespace bsmpm
       if (piece.touching[q])
         {
           const Tensor<1, 2> &nq = surface[q].normal;
-          const Tensor<1, 2>  force =
-            piece.weights[q] * state.tangential * Tensor<1, 2>({-nq[1], nq[0]});
-          state.resultant += force;
-          state.moment += moment_about_origin(piece.positions[q] + u[q], force);
+          state.add_force(piece.positions[q] + u[q],
+                          piece.weights[q] * state.tangential *
+                            Tensor<1, 2>({-nq[1], nq[0]}));
         }
     return state;
   }
@@ -381,15 +378,13 @@ namespace bsmpm
               state.stiffness(i, j) -=
                 w * p / rho * (N[i] * N[j] - (nq * N[i]) * (nq * N[j]));
         const Tensor<1, 2> t = p * nq + t_T * tq;
-        state.resultant += w * t;
-        const double moment =
-          moment_about_origin(piece.positions[q] + u, w * t);
-        state.moment += moment;
+        const Point<2>     x = piece.positions[q] + u;
+        state.add_force(x, w * t);
         for (unsigned int e = 0; e < 2; ++e)
           {
             state.end_gaps[e] += w * phi[e] * surface.gap;
             state.end_tractions[e] += w * phi[e] * t;
-            state.end_moments[e] += phi[e] * moment;
+            state.end_moments[e] += moment_about_origin(x, w * phi[e] * t);
           }
       }
     for (unsigned int e = 0; e < 2; ++e)
@@ -461,10 +456,9 @@ namespace bsmpm
           for (unsigned int i = 0; i < n; ++i)
             H[i] += piece.weights[q] * xi[q] * (nq * N[q][i]);
           // The traction -eps_t m / I xi n on the curve.
-          const Tensor<1, 2> force =
-            piece.weights[q] * (-tilt_penalty * m / I * xi[q]) * nq;
-          state.resultant += force;
-          state.moment += moment_about_origin(piece.positions[q] + u[q], force);
+          state.add_force(piece.positions[q] + u[q],
+                          piece.weights[q] * (-tilt_penalty * m / I * xi[q]) *
+                            nq);
           const double rho = surface[q].turning_radius;
           if (std::isfinite(rho) && rho > 0)
             for (unsigned int i = 0; i < n; ++i)

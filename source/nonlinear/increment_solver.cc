@@ -373,26 +373,24 @@ namespace bsmpm
     // With the augmented Lagrangian the solves before a multiplier update
     // stop at a looser residual (CurveContact::tolerance_between_updates()):
     // the update moves the increment by more than what they leave.
-    double               looser = parts.contact != nullptr ?
-                                    parts.contact->tolerance_between_updates() :
-                                    0.;
-    NewtonSolver::Result result = parts.newton.solve(start.reference,
-                                                     residual,
-                                                     correct,
-                                                     step_back,
-                                                     slope,
-                                                     start.norm,
-                                                     positive_tangent,
-                                                     looser);
+    double looser = parts.contact != nullptr ?
+                      parts.contact->tolerance_between_updates() :
+                      0.;
+    // Iterations from the increment as it stands, whose residual's norm
+    // is @p norm.
+    const auto iterate = [&](const double norm) {
+      return parts.newton.solve(start.reference,
+                                residual,
+                                correct,
+                                step_back,
+                                slope,
+                                norm,
+                                positive_tangent,
+                                looser);
+    };
+    NewtonSolver::Result result = iterate(start.norm);
     const auto           go_on  = [&]() {
-      NewtonSolver::Result more = parts.newton.solve(start.reference,
-                                                     residual,
-                                                     correct,
-                                                     step_back,
-                                                     slope,
-                                                     residual(),
-                                                     positive_tangent,
-                                                     looser);
+      const NewtonSolver::Result more = iterate(residual());
       result.iterations.insert(result.iterations.end(),
                                more.iterations.begin(),
                                more.iterations.end());

@@ -57,6 +57,15 @@ namespace bsmpm
     /** That force's moment about the origin, int x x t ds (x the Gauss
      * points' places after the increment, t the traction on the body). */
     double moment = 0;
+
+    /** Adds the force @p f, acting at @p x, to the resultant and its
+     * moment. */
+    void
+    add_force(const Point<2> &x, const Tensor<1, 2> &f)
+    {
+      resultant += f;
+      moment += moment_about_origin(x, f);
+    }
     /** On the cell's DoFs and, as two more, the body's translation
      * (x, y) at the increment's end: the force and minus its
      * derivative. */
