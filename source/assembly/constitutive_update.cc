@@ -34,8 +34,11 @@ namespace bsmpm
       "mean of eps_xx + eps_yy at the centroid of the cell's moments (fitted "
       "ones in cut cells), stress C eps + (lambda + mu)(theta_mean - "
       "theta)(1, 1, 0), also in the Nitsche and implicit-boundary terms "
-      "(doc/b-bar.md). Nonlinear models: the 3D split (zz included). Finite "
-      "strain: F-bar for nonlinear models, none for linear elasticity.");
+      "(doc/b-bar.md); not with rigid bodies, where a mean per cell makes the "
+      "contact pressures alternate from one grid line to the next (a nearly "
+      "incompressible elastic body in contact locks). Nonlinear models: the "
+      "3D split (zz included). Finite strain: F-bar for nonlinear models, "
+      "none for linear elasticity.");
     prm.declare_entry(
       "Kinematics",
       "small strain",
