@@ -70,6 +70,7 @@ namespace bsmpm
     ConstitutiveUpdate::declare_parameters(prm);
     BodyRegion::declare_parameters(prm);
     MaterialPointLayout::declare_parameters(prm);
+    Bodies::declare_parameters(prm);
     BoundaryCurves::declare_parameters(prm);
     NeumannLoads::declare_parameters(prm);
     SupportMethods::declare_parameters(prm);
@@ -105,16 +106,29 @@ namespace bsmpm
     grid.parse_parameters(prm);
     material.parse_parameters(prm);
     constitutive_model = create_constitutive_model(prm);
-    if (strength_factor != 1.)
+    bodies.parse_parameters(prm, strength_factor);
+    // With several bodies only those with a strength are weakened (an
+    // elastic structure on the soil keeps its stiffness).
+    if (strength_factor != 1. &&
+        !(bodies.several() && constitutive_model->is_linear()))
       constitutive_model =
         constitutive_model->with_reduced_strength(strength_factor);
     contact.parse_parameters(prm);
-    // Contact makes every run nonlinear: Newton iterations decide where the
-    // curves touch.
-    constitutive_update = ConstitutiveUpdate::create(prm,
-                                                     *constitutive_model,
-                                                     material,
-                                                     contact.enabled());
+    // Contact makes every run nonlinear (Newton iterations decide where the
+    // curves touch), and so do several bodies (every point is integrated
+    // with its body's model).
+    constitutive_update =
+      ConstitutiveUpdate::create(prm,
+                                 *constitutive_model,
+                                 material,
+                                 contact.enabled() || bodies.several());
+    if (bodies.several())
+      {
+        std::vector<const ConstitutiveModel *> models;
+        for (const auto &body : bodies.further())
+          models.push_back(body.model.get());
+        constitutive_update->set_further_bodies(models);
+      }
     linear_b_bar = !constitutive_update && ConstitutiveUpdate::uses_b_bar(prm);
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
@@ -138,6 +152,35 @@ namespace bsmpm
     verification.parse_parameters(prm);
     exact_solution =
       ExactSolution::create(prm, material, gravity, this->finite_strain());
+    if (bodies.several())
+      check_several_bodies();
+  }
+
+
+
+  void
+  Scene::check_several_bodies() const
+  {
+    const std::string what = "With several bodies (" +
+                             bodies.further().front().section +
+                             "/Name is set) ";
+    AssertThrow(!finite_strain(),
+                ExcMessage(what + "the kinematics are small strain for now: "
+                                  "Material/Kinematics = finite strain is "
+                                  "not available."));
+    AssertThrow(!initial_stress.enabled(),
+                ExcMessage(what + "the initial stress comes from a gravity "
+                                  "stage for now: Initial stress/K0 "
+                                  "procedure is not available."));
+    AssertThrow(!exact_solution,
+                ExcMessage(what + "no exact solution is known: leave "
+                                  "Exact solution/Name empty."));
+    for (unsigned int k = 1; k <= stages.n_stages(); ++k)
+      AssertThrow(stages.stage(k).excavation.empty(),
+                  ExcMessage(what +
+                             "excavation is not available yet: "
+                             "Stages/Stage " +
+                             std::to_string(k) + "/Excavation."));
   }
 
 
@@ -161,10 +204,30 @@ namespace bsmpm
       TimerOutput::Scope t(timer, "setup: points");
       // Curves given by positions exist before the material points, which
       // they may trim; curves through material points after them.
-      boundary_curves.create_initial_curves(region, grid);
-      points.generate(layout, region, [this](const Point<2> &p) {
+      // With several bodies the curves are not completed round the first
+      // body's region: its edges may be where it meets the others.
+      boundary_curves.create_initial_curves(region, grid, !bodies.several());
+      const auto trimmed = [this](const Point<2> &p) {
         return boundary_curves.trims(p);
-      });
+      };
+      points.generate(layout, region, trimmed);
+      std::vector<double> densities{material.density()};
+      for (unsigned int k = 0; k < bodies.further().size(); ++k)
+        {
+          const Bodies::Body &body = bodies.further()[k];
+          points.add_body(body.layout,
+                          body.region,
+                          k + 1,
+                          body.section,
+                          [&](const Point<2> &p) {
+                            return trimmed(p) ||
+                                   bodies.in_earlier_body(p, k + 1, region);
+                          });
+          densities.push_back(body.material.density());
+        }
+      points.set_densities(densities);
+      if (bodies.several())
+        bodies.check_overlaps(points, region, communicator);
       std::vector<types::particle_index> tracked;
       if (!boundary_curves.empty())
         tracked = boundary_curves.create_points(points, region);
@@ -194,6 +257,10 @@ namespace bsmpm
             points.track(tracked);
         }
       cut_cell_quadrature.initialize(boundary_curves);
+      if (bodies.several())
+        cut_cell_quadrature.switch_off(
+          "several bodies: the cells where they meet are integrated by "
+          "their points");
     }
     InputChecks::check_supports(grid, boundary_curves, contact.enabled());
     {
@@ -239,7 +306,8 @@ namespace bsmpm
                             finite_strain(),
                             curve_contact,
                             reactions.curves(),
-                            excavation},
+                            excavation,
+                            bodies.several() ? &mass_moments : nullptr},
       timer);
     assembly->setup();
     if (curve_contact != nullptr)
@@ -309,6 +377,8 @@ namespace bsmpm
       }
     TimerOutput::Scope t(timer, "assembly");
     points.compute_cell_moments(cell_moments);
+    if (bodies.several())
+      points.compute_mass_moments(mass_moments);
     if (cut_cell_quadrature.active())
       {
         cut_cell_quadrature.correct_cell_moments(points, grid, cell_moments);

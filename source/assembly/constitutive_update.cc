@@ -100,10 +100,30 @@ namespace bsmpm
                                          const bool               b_bar,
                                          const Kinematics         kinematics)
     : model(model)
+    , body_models{&model}
+    , body_voigt{voigt_tangent(model.elastic_tangent())}
+    , symmetric_tangents(model.symmetric_tangent())
     , b_bar(b_bar)
     , elastic_voigt(voigt_tangent(model.elastic_tangent()))
     , point_kinematics(kinematics)
   {}
+
+
+
+  void
+  ConstitutiveUpdate::set_further_bodies(
+    const std::vector<const ConstitutiveModel *> &models)
+  {
+    body_models.resize(1);
+    body_voigt.resize(1);
+    symmetric_tangents = model.symmetric_tangent();
+    for (const ConstitutiveModel *m : models)
+      {
+        body_models.push_back(m);
+        body_voigt.push_back(voigt_tangent(m->elastic_tangent()));
+        symmetric_tangents = symmetric_tangents && m->symmetric_tangent();
+      }
+  }
 
 
 

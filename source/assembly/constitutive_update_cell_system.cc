@@ -128,7 +128,8 @@ namespace bsmpm
             yielded = respond(props, de, state, sigma, D_flat);
           else
             elastic_stress(props, de, sigma);
-          sums.add(st, w, sigma, yielded, D_flat);
+          sums.add(
+            st, w, sigma, yielded || other_body_tangent(props, D_flat), D_flat);
         }
       else if (!add_finite_strain_point(
                  kernel, strain, st, props, w, d, state, K, f, yielded))
@@ -171,7 +172,11 @@ namespace bsmpm
             const bool            yielded = respond(
               props, strain_increment(strain, point.st), state, sigma, D_flat);
             n_yielded += yielded;
-            sums.add(point.st, w, sigma, yielded, D_flat);
+            sums.add(point.st,
+                     w,
+                     sigma,
+                     yielded || other_body_tangent(props, D_flat),
+                     D_flat);
             // W is only needed in a cell crossed by a support's band:
             // summed below, then.
             continue;
@@ -235,7 +240,7 @@ namespace bsmpm
   {
     SymmetricTensor<2, 3> e;
     trial_strain(props, de, e);
-    const SymmetricTensor<2, 3> stress = model.elastic_tangent() * e;
+    const SymmetricTensor<2, 3> stress = model_of(props).elastic_tangent() * e;
     sigma[0]                           = stress[0][0];
     sigma[1]                           = stress[1][1];
     sigma[2]                           = stress[2][2];
@@ -262,7 +267,7 @@ namespace bsmpm
       finite_strain_trial(kernel, strain, st, props, d, nullptr, state);
     if (!(kin.det_f > 0))
       return false;
-    const auto response              = model.update(state);
+    const auto response              = model_of(props).update(state);
     yielded                          = response.yielded;
     const SymmetricTensor<2, 3> &tau = response.stress;
     const double                 c   = w / props[Property::det_F];
@@ -452,7 +457,7 @@ namespace bsmpm
                                           Vector<double>     &f) const
   {
     constexpr unsigned int n         = Q1CellKernel::dofs_per_cell;
-    const bool             symmetric = model.symmetric_tangent();
+    const bool             symmetric = symmetric_tangents;
     // K and f from the sums (see H in cell_system()):
     // G_a,j = sum_b (H_ab P_b,j + M_ab D_e P_b,j),
     // K_ij = sum_a P_a,i^T G_a,j; for a symmetric tangent the upper

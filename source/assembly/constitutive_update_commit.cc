@@ -318,7 +318,7 @@ namespace bsmpm
                 const FiniteStrainPoint kin = finite_strain_trial(
                   kernel, strain, st, props, d, &grad, state);
                 det_f                        = kin.det_f;
-                const ConstitutiveResponse r = model.update(state);
+                const ConstitutiveResponse r = model_of(props).update(state);
                 ConstitutiveModel::plane_strain_response(r, stress, tangent);
                 yielded = r.yielded;
               }
@@ -337,7 +337,7 @@ namespace bsmpm
               }
             if (has_material && props[Property::volume] > 0.)
               sums.add(PointMoments::weighted(integration_weight(props), st),
-                       yielded,
+                       yielded || other_body_tangent(props, tangent),
                        tangent);
             n_yielded += yielded && props[Property::volume] > 0;
             store_committed_state(

@@ -25,6 +25,9 @@ namespace bsmpm
         const double w = integration_weight(props);
         if (w == 0.)
           continue;
+        // The shortcut's sums take the first body's elastic tangent.
+        if (body_models.size() > 1 && props[Property::body] != 0.)
+          return ElasticCell();
         state.elastic_strain[0][0]      = props[Property::elastic_strain];
         state.elastic_strain[1][1]      = props[Property::elastic_strain + 1];
         state.elastic_strain[2][2]      = props[Property::elastic_strain + 2];

@@ -159,7 +159,7 @@ namespace bsmpm
     Tensor<2, 3>       log_derivative;
     const Tensor<1, 3> b_trial =
       PlaneStrainKinematics::trial_state(props, f, state, log_derivative);
-    const auto response = model.update(state);
+    const auto response = model_of(props).update(state);
 
     // d tau / d eps^tr on (xx, yy, xy), as in cell_system().
     const Tensor<2, 3> DL =

@@ -253,9 +253,8 @@ namespace bsmpm
     if (!scatter.serves(system_matrix))
       scatter.reinit(system_matrix, grid.triangulation().n_active_cells());
 
-    const Tensor<1, 2> body_force =
-      level.gravity * parts.material.density() * parts.gravity;
-    const bool has_body_force = body_force.norm() > 0;
+    const Tensor<1, 2> body_force = level.gravity * density() * parts.gravity;
+    const bool         has_body_force = body_force.norm() > 0;
 
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
     FullMatrix<double>                   cell_matrix(n, n);
@@ -286,7 +285,7 @@ namespace bsmpm
           }
         // In finite strain the points carry the body force on their masses.
         if (has_body_force && !(parts.finite_strain && points_here))
-          kernel.add_body_force(m, body_force, cell_rhs);
+          kernel.add_body_force(mass_moments(m, cell), body_force, cell_rhs);
         cell_rhs -= internal;
 
         cell->get_dof_indices(dof_indices);
@@ -379,8 +378,7 @@ namespace bsmpm
         loads.compress(VectorOperation::add);
         loads *= slope.loads;
       }
-    const Tensor<1, 2> body_force =
-      slope.gravity * parts.material.density() * parts.gravity;
+    const Tensor<1, 2> body_force = slope.gravity * density() * parts.gravity;
     if (body_force.norm() > 0)
       {
         constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
@@ -395,7 +393,9 @@ namespace bsmpm
             if (m.v == 0.)
               continue;
             cell_rhs = 0;
-            cell_kernel->add_body_force(m, body_force, cell_rhs);
+            cell_kernel->add_body_force(mass_moments(m, cell),
+                                        body_force,
+                                        cell_rhs);
             cell->get_dof_indices(dof_indices);
             system_constraints.distribute_local_to_global(cell_rhs,
                                                           dof_indices,

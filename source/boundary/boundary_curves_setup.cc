@@ -170,7 +170,8 @@ namespace bsmpm
 
   void
   BoundaryCurves::create_initial_curves(const BodyRegion     &region,
-                                        const BackgroundGrid &grid)
+                                        const BackgroundGrid &grid,
+                                        const bool            complete)
   {
     // An edge the region's shape does not have is refused here, naming the
     // parameter, before any curve is built.
@@ -179,7 +180,8 @@ namespace bsmpm
           sources[c].kind == "material points")
         region.check_edge(sources[c].edge,
                           "Boundary curves/" + curves[c].name + "/Edge");
-    complete_region_boundary(region, grid);
+    if (complete)
+      complete_region_boundary(region, grid);
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
         BoundaryCurve &curve  = curves[c];

@@ -488,8 +488,7 @@ namespace bsmpm
     const bool supported =
       parts.grid.has_face_conditions() || parts.curves.has_supports();
     const Tensor<1, 2> load = parts.stages.level(load_factor).gravity *
-                                parts.material.density() *
-                                parts.points.global_volume() * parts.gravity +
+                                parts.points.global_mass() * parts.gravity +
                               traction_resultant();
     return parts.contact->friction_hint(parts.grid,
                                         supported ? nullptr : &load);

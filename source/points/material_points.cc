@@ -39,7 +39,8 @@ namespace bsmpm
   bool
   MaterialPoints::insert(const Point<2>             &position,
                          const double                volume,
-                         const types::particle_index id)
+                         const types::particle_index id,
+                         const unsigned int          body)
   {
     AssertThrow(grid.contains(position),
                 ExcMessage("Material point " + std::to_string(id) + " at " +
@@ -62,7 +63,12 @@ namespace bsmpm
         properties[Property::deformation_gradient]     = 1.;
         properties[Property::deformation_gradient + 3] = 1.;
         properties[Property::det_F]                    = 1.;
+        properties[Property::body]                     = body;
       }
+    else
+      AssertThrow(body == 0,
+                  ExcMessage("Points of several bodies need the "
+                             "point-by-point state (Property::body)."));
     particles.insert_particle(position,
                               grid.local_coordinates(position, ij),
                               id,
@@ -83,14 +89,50 @@ namespace bsmpm
     particles.initialize(grid.triangulation(),
                          grid.mapping(),
                          n_point_properties);
-    // Each process creates the points of its own cells, with the index of
-    // the layout's enumeration as id: unique and partition-independent.
-    next_id = layout.n_candidates(grid);
     // Room for this process' share at once: growing the storage point by
     // point costs more than the insertion itself.
     const unsigned int n_cells = grid.n_cells(0) * grid.n_cells(1);
-    particles.reserve(next_id / n_cells *
+    particles.reserve(layout.n_candidates(grid) / n_cells *
                       grid.triangulation().n_locally_owned_active_cells());
+    next_id           = 0;
+    n_material_points = insert_body(layout, region, 0, excluded);
+    AssertThrow(n_material_points > 0,
+                ExcMessage("Material points: the body region holds no "
+                           "material point of the chosen layout."));
+  }
+
+
+
+  void
+  MaterialPoints::add_body(
+    const MaterialPointLayout                   &layout,
+    const BodyRegion                            &region,
+    const unsigned int                           body,
+    const std::string                           &section,
+    const std::function<bool(const Point<2> &)> &excluded)
+  {
+    const types::particle_index n = insert_body(layout, region, body, excluded);
+    AssertThrow(n > 0,
+                ExcMessage(section +
+                           ": the body region holds no material point of "
+                           "the chosen layout."));
+    n_material_points += n;
+  }
+
+
+
+  types::particle_index
+  MaterialPoints::insert_body(
+    const MaterialPointLayout                   &layout,
+    const BodyRegion                            &region,
+    const unsigned int                           body,
+    const std::function<bool(const Point<2> &)> &excluded)
+  {
+    // Each process creates the points of its own cells, with the index of
+    // the layout's enumeration (after the earlier bodies' candidates) as
+    // id: unique and partition-independent.
+    const types::particle_index first = next_id;
+    next_id += layout.n_candidates(grid);
     types::particle_index n_here = 0;
     layout.for_each_point(
       grid,
@@ -100,13 +142,10 @@ namespace bsmpm
       },
       [&](const Point<2> &p, const double volume, const unsigned long id) {
         if (!excluded || !excluded(p))
-          n_here += insert(p, volume, id);
+          n_here += insert(p, volume, first + id, body);
       });
-    n_material_points = Utilities::MPI::sum(n_here, grid.mpi_communicator());
-    AssertThrow(n_material_points > 0,
-                ExcMessage("Material points: the body region holds no "
-                           "material point of the chosen layout."));
     particles.update_cached_numbers();
+    return Utilities::MPI::sum(n_here, grid.mpi_communicator());
   }
 
 
@@ -158,6 +197,40 @@ namespace bsmpm
                            props[Property::stress + 2]}));
             }
         }
+  }
+
+
+
+  void
+  MaterialPoints::compute_mass_moments(std::vector<CellMoments> &moments) const
+  {
+    moments.assign(grid.triangulation().n_active_cells(), CellMoments());
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          CellMoments &m = moments[cell->active_cell_index()];
+          for (const auto &particle : particles.particles_in_cell(cell))
+            {
+              const auto   props  = particle.get_properties();
+              const double volume = props[Property::volume];
+              if (volume != 0.)
+                m.add(particle.get_reference_location(),
+                      density(props) * volume,
+                      Voigt());
+            }
+        }
+  }
+
+
+
+  double
+  MaterialPoints::global_mass() const
+  {
+    double mass = 0;
+    for (const auto &particle : particles)
+      mass += density(particle.get_properties()) *
+              particle.get_properties()[Property::volume];
+    return Utilities::MPI::sum(mass, grid.mpi_communicator());
   }
 
 
@@ -386,7 +459,8 @@ namespace bsmpm
                                "F_xy",
                                "F_yx",
                                "F_yy",
-                               "det_F"})
+                               "det_F",
+                               "body"})
         names.emplace_back(name);
     return names;
   }

@@ -12,8 +12,8 @@ import sys
 # io, and the driver (source/main.cc) above all; the driver's parts
 # (command line, parameter files, sweeps, error reports) are io.
 LAYERS = ["base", "linear_algebra", "geometry", "materials", "points",
-          "verification", "boundary", "quadrature", "contact", "assembly",
-          "nonlinear", "io", "analysis"]
+          "bodies", "verification", "boundary", "quadrature", "contact",
+          "assembly", "nonlinear", "io", "analysis"]
 TOP = len(LAYERS)
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else

@@ -9,6 +9,7 @@
 
 #include <bsmpm/assembly/constitutive_update.h>
 #include <bsmpm/assembly/system_assembly.h>
+#include <bsmpm/bodies/bodies.h>
 #include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/boundary/ghost_penalty.h>
 #include <bsmpm/boundary/neumann_loads.h>
@@ -149,6 +150,9 @@ namespace bsmpm
     begin_stage(const unsigned int k);
     void
     evaluate_errors();
+    /** Refuses what several bodies cannot do yet, naming the parameter. */
+    void
+    check_several_bodies() const;
     void
     write_checkpoint(const unsigned int step);
 
@@ -183,9 +187,11 @@ namespace bsmpm
              constitutive_update->kinematics() ==
                ConstitutiveUpdate::Kinematics::finite_strain;
     }
-    NewtonSolver                     newton;
-    BodyRegion                       region;
-    MaterialPointLayout              layout;
+    NewtonSolver        newton;
+    BodyRegion          region;
+    MaterialPointLayout layout;
+    /** The bodies beyond the first (region, layout, material above). */
+    Bodies                           bodies;
     MaterialPoints                   points;
     Probe                            probe;
     BoundaryCurves                   boundary_curves;
@@ -212,6 +218,8 @@ namespace bsmpm
     /** Locally owned cells where a support method displaces the points. */
     std::vector<bool>        band_cells;
     std::vector<CellMoments> cell_moments;
+    /** Several bodies: the moments of the points' masses (body force). */
+    std::vector<CellMoments> mass_moments;
 
     RunSummary run_summary;
   };

@@ -121,8 +121,19 @@ namespace bsmpm
     bool
     symmetric_tangent() const
     {
-      return model.symmetric_tangent();
+      return symmetric_tangents;
     }
+
+    /**
+     * The models of the further bodies (Bodies), in order: a point of body
+     * k > 0 (MaterialPoints::Property::body) responds with @p models[k -
+     * 1], a point of body 0 with the model given to the constructor. A
+     * point of another body than the first enters the cell's sums with its
+     * own elastic tangent, the cells whose points stay elastic (the
+     * moments' shortcut) hold the first body's points only.
+     */
+    void
+    set_further_bodies(const std::vector<const ConstitutiveModel *> &models);
 
     /** Finite strain: the body force per unit reference volume (rho_0
      * lambda g) that assemble() integrates over the points' masses. */
@@ -621,7 +632,41 @@ namespace bsmpm
     integration_weight(const ArrayView<const double> &props) const;
 
     const ConstitutiveModel &model;
-    const bool               b_bar;
+    /** The model of every body (the first: model), and the Voigt form of
+     * its elastic tangent; one entry with a single body. */
+    std::vector<const ConstitutiveModel *> body_models;
+    std::vector<Tensor<2, 4>>              body_voigt;
+    /** Whether every body's model has a symmetric tangent. */
+    bool symmetric_tangents;
+
+    /** The model of the point with @p props. */
+    const ConstitutiveModel &
+    model_of(const ArrayView<const double> &props) const
+    {
+      return body_models.size() == 1 ?
+               model :
+               *body_models[static_cast<unsigned int>(props[Property::body])];
+    }
+
+    /** Whether the point with @p props belongs to another body than the
+     * first; then its elastic Voigt tangent, row by row, into
+     * @p tangent. */
+    bool
+    other_body_tangent(const ArrayView<const double> &props,
+                       std::array<double, 16>        &tangent) const
+    {
+      if (body_models.size() == 1)
+        return false;
+      const unsigned int b = static_cast<unsigned int>(props[Property::body]);
+      if (b == 0)
+        return false;
+      for (unsigned int r = 0; r < 4; ++r)
+        for (unsigned int c = 0; c < 4; ++c)
+          tangent[4 * r + c] = body_voigt[b][r][c];
+      return true;
+    }
+
+    const bool b_bar;
     /** The model's elastic tangent in Voigt form (voigt_tangent()). */
     const Tensor<2, 4> elastic_voigt;
     const Kinematics   point_kinematics;
@@ -644,7 +689,7 @@ namespace bsmpm
   {
     trial_strain(props, de, state.elastic_strain);
     state.equivalent_plastic_strain = props[Property::plastic_strain];
-    return model.plane_strain_update(state, stress, tangent);
+    return model_of(props).plane_strain_update(state, stress, tangent);
   }
 
 

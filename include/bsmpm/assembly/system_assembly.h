@@ -97,6 +97,11 @@ namespace bsmpm
       /** The material a stage removed, whose forces on the rest assemble()
        * adds times LoadLevel::release. */
       const Excavation &excavation;
+      /** Several bodies (Bodies): the moments of the points' masses
+       * (MaterialPoints::compute_mass_moments(), kept by the caller), from
+       * which the body force is integrated with the gravity alone; nullptr:
+       * the material's density times the volume moments. */
+      const std::vector<CellMoments> *mass_moments = nullptr;
     };
 
     SystemAssembly(const Parts &parts, TimerOutput &timer);
@@ -298,6 +303,26 @@ namespace bsmpm
     }
 
   private:
+    /** The density that multiplies the gravity in the body force: the
+     * material's, or 1 where the moments carry the masses
+     * (Parts::mass_moments). */
+    double
+    density() const
+    {
+      return parts.mass_moments ? 1. : parts.material.density();
+    }
+
+    /** The moments the body force of @p cell is integrated from: its
+     * volume moments @p m, or its mass moments (Parts::mass_moments). */
+    const CellMoments &
+    mass_moments(const CellMoments                         &m,
+                 const DoFHandler<2>::active_cell_iterator &cell) const
+    {
+      return parts.mass_moments ?
+               (*parts.mass_moments)[cell->active_cell_index()] :
+               m;
+    }
+
     Parts        parts;
     TimerOutput &timer;
 

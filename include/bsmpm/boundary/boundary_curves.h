@@ -76,10 +76,14 @@ namespace bsmpm
     /**
      * Builds the initial splines of the curves whose points are given
      * directly (coordinates, a file, the edges of the body region): they
-     * must exist before the material points, to trim them.
+     * must exist before the material points, to trim them. With
+     * @p complete, free curves close the region's boundary where the
+     * given ones leave it open (complete_region_boundary()).
      */
     void
-    create_initial_curves(const BodyRegion &region, const BackgroundGrid &grid);
+    create_initial_curves(const BodyRegion     &region,
+                          const BackgroundGrid &grid,
+                          const bool            complete = true);
 
     /**
      * Inserts the tracking points of the curves, or finds the material

@@ -60,9 +60,11 @@ namespace bsmpm
        * (xx, xy, yx, yy; F_zz = 1 in plane strain) and det F: the
        * kinematics of finite strain; in small strain a record of the
        * points' motion. */
-      static constexpr unsigned int deformation_gradient   = 20;
-      static constexpr unsigned int det_F                  = 24;
-      static constexpr unsigned int n_properties_inelastic = 25;
+      static constexpr unsigned int deformation_gradient = 20;
+      static constexpr unsigned int det_F                = 24;
+      /** The body the point belongs to, 0 .. n - 1 (Bodies). */
+      static constexpr unsigned int body                   = 25;
+      static constexpr unsigned int n_properties_inelastic = 26;
     };
 
     /** Result of moving the points by one increment. */
@@ -115,6 +117,43 @@ namespace bsmpm
     generate(const MaterialPointLayout                   &layout,
              const BodyRegion                            &region,
              const std::function<bool(const Point<2> &)> &excluded = {});
+
+    /**
+     * After generate(): adds the points of a further body, number @p body
+     * (from 1; Property::body, which the points store with the state of a
+     * nonlinear model), of @p layout in @p region, except where
+     * @p excluded. Their ids follow the earlier bodies' candidates, so
+     * that they too are partition-independent. Throws (naming
+     * @p section) if the region holds no point.
+     */
+    void
+    add_body(const MaterialPointLayout                   &layout,
+             const BodyRegion                            &region,
+             const unsigned int                           body,
+             const std::string                           &section,
+             const std::function<bool(const Point<2> &)> &excluded = {});
+
+    /**
+     * The moments of the points' masses (their volumes times the density
+     * of their body, set_densities()) in every locally owned cell, by
+     * active_cell_index(): where bodies of several densities share a
+     * cell, the body force is integrated from these.
+     */
+    void
+    compute_mass_moments(std::vector<CellMoments> &moments) const;
+
+    /** The density of every body, by Property::body (one entry with one
+     * body): what compute_mass_moments() and global_mass() weigh the
+     * points' volumes with. */
+    void
+    set_densities(const std::vector<double> &densities)
+    {
+      body_densities = densities;
+    }
+
+    /** The mass of all points, over all processes. */
+    double
+    global_mass() const;
 
     /**
      * Adds zero-volume tracking points at @p positions (the same list on
@@ -398,7 +437,8 @@ namespace bsmpm
     bool
     insert(const Point<2>             &position,
            const double                volume,
-           const types::particle_index id);
+           const types::particle_index id,
+           const unsigned int          body = 0);
 
     /** The cell whose field boundary_strain() extends to a point at @p st
      * of @p cell, and the point's local coordinates in it. */
@@ -430,6 +470,24 @@ namespace bsmpm
     bool neighbourhood_current = false;
 
     /** Records position and stress of a point if it is tracked. */
+    /** The density of the point with @p props (set_densities()). */
+    double
+    density(const ArrayView<const double> &props) const
+    {
+      return body_densities.size() == 1 ?
+               body_densities[0] :
+               body_densities[static_cast<unsigned int>(props[Property::body])];
+    }
+
+    /** Inserts the points of @p layout in @p region with ids from
+     * next_id on, with Property::body = @p body; returns how many were
+     * inserted over all processes. */
+    types::particle_index
+    insert_body(const MaterialPointLayout                   &layout,
+                const BodyRegion                            &region,
+                const unsigned int                           body,
+                const std::function<bool(const Point<2> &)> &excluded);
+
     void
     record_if_tracked(const types::particle_index   id,
                       const Point<2>               &x,
@@ -440,6 +498,7 @@ namespace bsmpm
     Particles::ParticleHandler<2> particles;
     types::particle_index         n_material_points = 0;
     types::particle_index         next_id           = 0;
+    std::vector<double>           body_densities    = {0.};
 
     /** By tracked slot: set_rigid_increments(). */
     std::vector<std::pair<bool, Tensor<1, 2>>> rigid_increments;

@@ -1,0 +1,103 @@
+#ifndef bsmpm_bodies_h
+#define bsmpm_bodies_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <bsmpm/geometry/body_region.h>
+#include <bsmpm/materials/constitutive_model.h>
+#include <bsmpm/materials/material.h>
+#include <bsmpm/points/material_point_layout.h>
+#include <bsmpm/points/material_points.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bsmpm
+{
+  using namespace dealii;
+
+  /**
+   * The bodies of a scene beyond the first (doc/bodies.md): subsections
+   * "Body 2" .. "Body 4", each with a Name (empty: no such body) and its
+   * own "Body region", "Material" and "Material points", read by the same
+   * classes as the first body's, which the top level of the parameter file
+   * describes (the short form of a scene with one body).
+   *
+   * The bodies share the grid's field: where they meet they are bonded
+   * (no slip, no gap). Every point belongs to one body (its
+   * MaterialPoints::Property::body, 0 for the first) and is integrated with
+   * that body's constitutive model and density.
+   */
+  class Bodies
+  {
+  public:
+    /** Most bodies in a scene, the first included. */
+    static constexpr unsigned int max_bodies = 4;
+
+    /** One further body. */
+    struct Body
+    {
+      std::string           name;
+      BodyRegion            region;
+      MaterialPointLayout   layout;
+      LinearElasticMaterial material;
+      /** Its constitutive model (Material/Constitutive model). */
+      std::shared_ptr<const ConstitutiveModel> model;
+      /** Its parameter section, for messages: "Body 2". */
+      std::string section;
+    };
+
+    /** Declares "Body 2" .. "Body 4". */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** Reads the bodies whose Name is not empty, their strengths divided by
+     * @p strength_factor (StrengthReduction). They must come in order: a
+     * Body k with a name needs Body k - 1 to have one. */
+    void
+    parse_parameters(ParameterHandler &prm, const double strength_factor);
+
+    /** The further bodies, in order (body number 1, 2, ...: the points'
+     * Property::body). */
+    const std::vector<Body> &
+    further() const
+    {
+      return bodies;
+    }
+
+    /** Whether the scene has more than one body. */
+    bool
+    several() const
+    {
+      return !bodies.empty();
+    }
+
+    /**
+     * Whether @p p lies in the region of a body before body @p k (from 1:
+     * a further body; the first body's region is @p first_region): a
+     * point of the layout on an edge that two bodies share belongs to the
+     * earlier body, so that the material is not counted twice.
+     */
+    bool
+    in_earlier_body(const Point<2>    &p,
+                    const unsigned int k,
+                    const BodyRegion  &first_region) const;
+
+    /**
+     * Refuses regions that overlap: a point of one body (of @p points,
+     * over all processes) inside the region of another, not on its edge,
+     * the first body's region being @p first_region. Bodies may meet
+     * along their edges.
+     */
+    void
+    check_overlaps(const MaterialPoints &points,
+                   const BodyRegion     &first_region,
+                   const MPI_Comm        communicator) const;
+
+  private:
+    std::vector<Body> bodies;
+  };
+} // namespace bsmpm
+
+#endif
