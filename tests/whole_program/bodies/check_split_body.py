@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""A body cut into two bodies of the same material is the same body: the
+plastic strip footing of prm/strip-footing.prm under its own weight
+(von Mises clay, density 1.8 t/m^3, the imposed footing pushed down in a
+few steps), once as one body and once as two, the top layer the first body
+and the rest Body 2, cut along a grid line and inside a row of cells. The
+footing's force must agree to --tolerance (round-off: the same points, each
+with the same state, summed in another order) in every step, and so must the
+largest displacement. Both runs integrate by the points (Cut cells/
+Quadrature = plain), which is what several bodies do.
+"""
+import argparse
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2]))
+from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
+
+parser = argparse.ArgumentParser(description=__doc__)
+parser.add_argument("--bsmpm", required=True)
+parser.add_argument("--prm", required=True, help="prm/strip-footing.prm")
+parser.add_argument("--np", type=int, default=1)
+parser.add_argument("--steps", type=int, default=6)
+parser.add_argument("--tolerance", type=float, default=1e-9)
+args = parser.parse_args()
+
+common = ["Cut cells/Quadrature=plain", "Output/Interval=0",
+          f"Loading/Load steps={args.steps}", "Loading/Gravity=0, -9.81",
+          "Material/Density=1.8"]
+clay = ["Young's modulus=1e4", "Poisson's ratio=0.3",
+        "Constitutive model=von Mises",
+        "von Mises/Yield stress=17.320508075688775",
+        "von Mises/Hardening modulus=0", "Density=1.8"]
+
+
+def footing(cut):
+    settings = list(common)
+    if cut is not None:
+        settings += ["Body region/Lower left corner=0, " + str(cut),
+                     "Body 2/Name=lower clay",
+                     "Body 2/Body region/Lower left corner=0, 1",
+                     "Body 2/Body region/Upper right corner=4, " + str(cut),
+                     "Body 2/Material points/Points per cell=2"]
+        settings += ["Body 2/Material/" + c for c in clay]
+    summary = run(args.bsmpm, args.prm, args.np, settings)
+    return [(-s["quantities"]["curve1_force_y"],
+             s["quantities"]["max_displacement"]) for s in summary["steps"]]
+
+
+one = footing(None)
+problems = []
+for cut in (3.0, 3.1):
+    two = footing(cut)
+    worst = max(max(abs(b[0] / a[0] - 1), abs(b[1] / a[1] - 1))
+                for a, b in zip(one, two))
+    print(f"cut at y = {cut}: footing force {two[-1][0]:.10g} against "
+          f"{one[-1][0]:.10g} for one body; largest relative difference "
+          f"over {len(two)} steps {worst:.2e}")
+    if len(two) != len(one) or not worst <= args.tolerance:
+        problems.append(f"cut at y = {cut}: difference {worst:.2e}")
+for p in problems:
+    print("FAIL:", p)
+sys.exit(1 if problems else 0)
