@@ -159,6 +159,35 @@ namespace bsmpm
 
 
   void
+  Scene::correct_mass_moments(const std::vector<CellMoments> &points_moments)
+  {
+    // Where the cut-cell quadrature replaced a cell's volume moments by the
+    // exact ones, the body force takes them too, times the density of the
+    // cell's points (their mass over their volume; the first body's in a
+    // cell without points), as one body's would.
+    for (unsigned int c = 0; c < cell_moments.size(); ++c)
+      {
+        const CellMoments &exact = cell_moments[c];
+        const CellMoments &own   = points_moments[c];
+        if (exact.v == own.v && exact.vs == own.vs && exact.vt == own.vt &&
+            exact.vss == own.vss && exact.vtt == own.vtt &&
+            exact.vst == own.vst)
+          continue;
+        const double density =
+          own.v > 0 ? mass_moments[c].v / own.v : material.density();
+        CellMoments &mass = mass_moments[c];
+        mass.v            = density * exact.v;
+        mass.vs           = density * exact.vs;
+        mass.vt           = density * exact.vt;
+        mass.vss          = density * exact.vss;
+        mass.vtt          = density * exact.vtt;
+        mass.vst          = density * exact.vst;
+      }
+  }
+
+
+
+  void
   Scene::check_several_bodies() const
   {
     const std::string what = "With several bodies (" +
@@ -204,9 +233,15 @@ namespace bsmpm
       TimerOutput::Scope t(timer, "setup: points");
       // Curves given by positions exist before the material points, which
       // they may trim; curves through material points after them.
-      // With several bodies the curves are not completed round the first
-      // body's region: its edges may be where it meets the others.
-      boundary_curves.create_initial_curves(region, grid, !bodies.several());
+      // With several bodies the curves refer to the rectangle that they
+      // fill together, if they do, and are completed round it; else they
+      // lie on the first body's edges and are not completed (those edges
+      // may be where it meets the others).
+      const std::optional<BodyRegion> filled = bodies.filled_rectangle(region);
+      const BodyRegion               &curve_region = filled ? *filled : region;
+      boundary_curves.create_initial_curves(curve_region,
+                                            grid,
+                                            filled.has_value());
       const auto trimmed = [this](const Point<2> &p) {
         return boundary_curves.trims(p);
       };
@@ -230,7 +265,7 @@ namespace bsmpm
         bodies.check_overlaps(points, region, communicator);
       std::vector<types::particle_index> tracked;
       if (!boundary_curves.empty())
-        tracked = boundary_curves.create_points(points, region);
+        tracked = boundary_curves.create_points(points, curve_region);
       if (probe.enabled())
         probe.add_to(points, tracked);
       if (!tracked.empty())
@@ -257,10 +292,6 @@ namespace bsmpm
             points.track(tracked);
         }
       cut_cell_quadrature.initialize(boundary_curves);
-      if (bodies.several())
-        cut_cell_quadrature.switch_off(
-          "several bodies: the cells where they meet are integrated by "
-          "their points");
     }
     InputChecks::check_supports(grid, boundary_curves, contact.enabled());
     {
@@ -381,9 +412,14 @@ namespace bsmpm
       points.compute_mass_moments(mass_moments);
     if (cut_cell_quadrature.active())
       {
+        std::vector<CellMoments> points_moments;
+        if (bodies.several())
+          points_moments = cell_moments;
         cut_cell_quadrature.correct_cell_moments(points, grid, cell_moments);
         for (const auto &[name, count] : cut_cell_quadrature.statistics())
           run_summary.quantities[name] = count;
+        if (bodies.several())
+          correct_mass_moments(points_moments);
       }
     // The cells of the body without points borrow their neighbours'
     // state, across the partition's edges too.

@@ -110,6 +110,33 @@ namespace bsmpm
 
 
 
+  std::optional<BodyRegion>
+  Bodies::filled_rectangle(const BodyRegion &first_region) const
+  {
+    if (bodies.empty())
+      return first_region;
+    std::vector<const BodyRegion *> regions{&first_region};
+    for (const Body &body : bodies)
+      regions.push_back(&body.region);
+    BoundingBox<2> box  = first_region.bounding_box();
+    double         area = 0;
+    for (const BodyRegion *region : regions)
+      {
+        if (region->shape() != BodyRegion::Shape::rectangle)
+          return std::nullopt;
+        box.merge_with(region->bounding_box());
+        area += region->area();
+      }
+    const auto [lower_left, upper_right] = box.get_boundary_points();
+    const double box_area =
+      (upper_right[0] - lower_left[0]) * (upper_right[1] - lower_left[1]);
+    if (std::abs(area - box_area) > 1e-12 * box_area)
+      return std::nullopt;
+    return BodyRegion::rectangle(lower_left, upper_right);
+  }
+
+
+
   bool
   Bodies::in_earlier_body(const Point<2>    &p,
                           const unsigned int k,

@@ -153,6 +153,19 @@ namespace bsmpm
 
 
 
+  BodyRegion
+  BodyRegion::rectangle(const Point<2> &lower_left, const Point<2> &upper_right)
+  {
+    BodyRegion region;
+    region.region_shape = Shape::rectangle;
+    region.lower_left   = lower_left;
+    region.upper_right  = upper_right;
+    region.check_rectangle();
+    return region;
+  }
+
+
+
   void
   BodyRegion::parse_parameters(ParameterHandler &prm)
   {

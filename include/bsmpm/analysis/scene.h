@@ -150,6 +150,11 @@ namespace bsmpm
     begin_stage(const unsigned int k);
     void
     evaluate_errors();
+    /** Several bodies: where the cut-cell quadrature corrected a cell's
+     * moments (@p points_moments: the points' own), the mass moments
+     * follow (the exact moments times the density of the cell's points). */
+    void
+    correct_mass_moments(const std::vector<CellMoments> &points_moments);
     /** Refuses what several bodies cannot do yet, naming the parameter. */
     void
     check_several_bodies() const;

@@ -10,6 +10,7 @@
 #include <bsmpm/points/material_points.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,17 @@ namespace bsmpm
     {
       return !bodies.empty();
     }
+
+    /**
+     * The region the boundary curves refer to ("region edge") and are
+     * completed round: the rectangle that the bodies fill together where
+     * every body's region is an axis-aligned rectangle and their areas add
+     * up to that of their bounding box (layers), else nothing (the curves
+     * then lie on the first body's edges, @p first_region, and are not
+     * completed). With one body, @p first_region.
+     */
+    std::optional<BodyRegion>
+    filled_rectangle(const BodyRegion &first_region) const;
 
     /**
      * Whether @p p lies in the region of a body before body @p k (from 1:

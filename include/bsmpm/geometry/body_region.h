@@ -40,6 +40,10 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /** The axis-aligned rectangle from @p lower_left to @p upper_right. */
+    static BodyRegion
+    rectangle(const Point<2> &lower_left, const Point<2> &upper_right);
+
     /** Whether @p p lies in the closed region. */
     bool
     contains(const Point<2> &p) const;
