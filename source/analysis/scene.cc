@@ -138,8 +138,11 @@ namespace bsmpm
     displacement_control.parse_parameters(prm);
     region.parse_parameters(prm);
     layout.parse_parameters(prm);
-    if (this->finite_strain())
-      BoundaryCurves::enclose_body_region(prm, region, grid.min_cell_size());
+    // The closed curve of finite strain goes round all bodies where they
+    // fill a rectangle (Bodies::filled_rectangle()).
+    const std::optional<BodyRegion> filled = bodies.filled_rectangle(region);
+    if (this->finite_strain() && filled)
+      BoundaryCurves::enclose_body_region(prm, *filled, grid.min_cell_size());
     boundary_curves.parse_parameters(prm);
     neumann_loads.parse_parameters(prm);
     supports.parse_parameters(prm);
@@ -193,10 +196,12 @@ namespace bsmpm
     const std::string what = "With several bodies (" +
                              bodies.further().front().section +
                              "/Name is set) ";
-    AssertThrow(!finite_strain(),
-                ExcMessage(what + "the kinematics are small strain for now: "
-                                  "Material/Kinematics = finite strain is "
-                                  "not available."));
+    AssertThrow(!finite_strain() || bodies.filled_rectangle(region),
+                ExcMessage(what + "in finite strain the bodies' regions "
+                                  "must be rectangles that fill a rectangle "
+                                  "together (layers), for now: Material/"
+                                  "Kinematics = finite strain is not "
+                                  "available with these regions."));
     AssertThrow(!initial_stress.enabled(),
                 ExcMessage(what + "the initial stress comes from a gravity "
                                   "stage for now: Initial stress/K0 "
@@ -261,6 +266,8 @@ namespace bsmpm
           densities.push_back(body.material.density());
         }
       points.set_densities(densities);
+      if (constitutive_update)
+        constitutive_update->set_densities(densities);
       if (bodies.several())
         bodies.check_overlaps(points, region, communicator);
       std::vector<types::particle_index> tracked;
@@ -292,6 +299,12 @@ namespace bsmpm
             points.track(tracked);
         }
       cut_cell_quadrature.initialize(boundary_curves);
+      // Curves that enclose the first body alone would give its points'
+      // fitting the exact part of the first body in a cell the bodies
+      // share.
+      if (bodies.several() && !filled)
+        cut_cell_quadrature.switch_off(
+          "several bodies that do not fill a rectangle together");
     }
     InputChecks::check_supports(grid, boundary_curves, contact.enabled());
     {

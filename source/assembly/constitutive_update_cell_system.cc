@@ -309,6 +309,7 @@ namespace bsmpm
       shift[a] = f_bar ? strain.centroid_gradients[a][kernel.component(a)] -
                            kin.gradients[a][kernel.component(a)] :
                          0.;
+    const Tensor<1, 2> body_force = body_force_at(props);
     for (unsigned int a = 0; a < n; ++a)
       f[a] += c * (tau_g[a][kernel.component(a)] + tr_tau / 3 * shift[a] -
                    body_force[kernel.component(a)] * N[kernel.vertex(a)]);
@@ -442,6 +443,10 @@ namespace bsmpm
         for (unsigned int k = 0; k < props.size(); ++k)
           mean[k] += w / W * props[k];
       }
+    // Several bodies: the state is that of the body most of the weight
+    // belongs to (of two, the nearer to the mean index).
+    if (mean.size() > Property::body)
+      mean[Property::body] = std::round(mean[Property::body]);
     return mean;
   }
 

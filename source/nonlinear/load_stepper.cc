@@ -302,8 +302,8 @@ namespace bsmpm
                           moments,
                           cell_quality);
         assembly.check_loads_finite(step);
-        parts.constitutive_update->set_body_force(
-          level.gravity * parts.material.density() * parts.gravity);
+        parts.constitutive_update->set_body_force(level.gravity,
+                                                  parts.gravity);
 
         IncrementSolver::LinearSolves solves;
         double                        load_increment = 0;
@@ -371,8 +371,7 @@ namespace bsmpm
     const NewtonSolver     &newton            = parts.newton;
     parts.assembly.check_loads_finite(step);
     parts.constitutive_update->set_body_force(
-      parts.stages.level(lambda + delta).gravity * parts.material.density() *
-      parts.gravity);
+      parts.stages.level(lambda + delta).gravity, parts.gravity);
     IncrementSolver::LinearSolves solves;
     NewtonSolver::Result          result;
     // The last cut that may still cycle (doc/newton.md, "Stalled

@@ -3,6 +3,7 @@
 #include <bsmpm/points/material_points.h>
 
 #include <algorithm>
+#include <cmath>
 
 // MaterialPoints, part 4: what a cell learns from its neighbours, across
 // processes too. The field a boundary point in a cell without material
@@ -49,6 +50,10 @@ namespace bsmpm
               add_points(cell->neighbor(f)->neighbor(g));
     for (double &value : mean)
       value /= volume;
+    // Several bodies: the state is that of the body most of the volume
+    // belongs to (of two, the nearer to the mean index).
+    if (mean.size() > Property::body)
+      mean[Property::body] = std::round(mean[Property::body]);
     return mean;
   }
 

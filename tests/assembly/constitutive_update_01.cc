@@ -157,7 +157,9 @@ namespace
         for (const bool b_bar : {false, true})
           {
             ConstitutiveUpdate update(*model, b_bar, kinematics);
-            update.set_body_force(Tensor<1, 2>({3e3, -2e4}));
+            // A body force of (3e3, -2e4) per unit volume: density 2e3.
+            update.set_densities({2e3});
+            update.set_body_force(1., Tensor<1, 2>({1.5, -10.}));
             double       worst = 0, asymmetry = 0, pointwise = 0;
             unsigned int yielded = 0, cases = 0;
             for (unsigned int c = 0; c < 20; ++c)

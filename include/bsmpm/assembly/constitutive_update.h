@@ -135,12 +135,23 @@ namespace bsmpm
     void
     set_further_bodies(const std::vector<const ConstitutiveModel *> &models);
 
-    /** Finite strain: the body force per unit reference volume (rho_0
-     * lambda g) that assemble() integrates over the points' masses. */
+    /** Finite strain: the gravity @p gravity times its load multiplier
+     * @p multiplier, which assemble() integrates over the points' masses
+     * (per unit reference volume rho_0 lambda g, rho_0 the density of the
+     * point's body, set_densities()). */
     void
-    set_body_force(const Tensor<1, 2> &force)
+    set_body_force(const double multiplier, const Tensor<1, 2> &gravity)
     {
-      body_force = force;
+      gravity_multiplier = multiplier;
+      body_gravity       = gravity;
+    }
+
+    /** The density of every body (by MaterialPoints::Property::body; one
+     * entry with one body). */
+    void
+    set_densities(const std::vector<double> &densities)
+    {
+      body_densities = densities;
     }
 
     /**
@@ -673,7 +684,21 @@ namespace bsmpm
     bool               quadrature_weights = false;
     /** See use_cut_cell_quadrature(). */
     const std::vector<CellMoments> *exact_moments = nullptr;
-    Tensor<1, 2>                    body_force;
+    double                          gravity_multiplier = 0;
+    Tensor<1, 2>                    body_gravity;
+    std::vector<double>             body_densities = {0.};
+
+    /** The body force per unit reference volume at the point with
+     * @p props (set_body_force()). */
+    Tensor<1, 2>
+    body_force_at(const ArrayView<const double> &props) const
+    {
+      const double density =
+        body_densities.size() == 1 ?
+          body_densities[0] :
+          body_densities[static_cast<unsigned int>(props[Property::body])];
+      return gravity_multiplier * density * body_gravity;
+    }
     /** See support_stiffness_ratios(). */
     mutable LinearAlgebra::distributed::Vector<double> stiffness_ratio;
   };

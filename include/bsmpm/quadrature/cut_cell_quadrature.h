@@ -58,6 +58,14 @@ namespace bsmpm
     void
     initialize(const BoundaryCurves &curves);
 
+    /** Turns the cut-cell quadrature off for the @p reason (reason_off()). */
+    void
+    switch_off(const std::string &reason)
+    {
+      is_active = false;
+      why_off   = reason;
+    }
+
     /** Whether the cut cells are integrated by fitted weights. */
     bool
     active() const

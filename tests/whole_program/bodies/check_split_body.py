@@ -23,6 +23,9 @@ parser.add_argument("--prm", required=True, help="prm/strip-footing.prm")
 parser.add_argument("--np", type=int, default=1)
 parser.add_argument("--steps", type=int, default=6)
 parser.add_argument("--tolerance", type=float, default=1e-9)
+parser.add_argument("--set", action="append", default=[],
+                    help="a further setting of both runs (e.g. "
+                    "Material/Kinematics=finite strain)")
 args = parser.parse_args()
 
 common = ["Output/Interval=0",
@@ -35,7 +38,7 @@ clay = ["Young's modulus=1e4", "Poisson's ratio=0.3",
 
 
 def footing(cut, quadrature):
-    settings = common + [f"Cut cells/Quadrature={quadrature}"]
+    settings = common + args.set + [f"Cut cells/Quadrature={quadrature}"]
     if cut is not None:
         settings += ["Body region/Lower left corner=0, " + str(cut),
                      "Body 2/Name=lower clay",
