@@ -176,27 +176,52 @@ namespace bsmpm
 
 
 
+  namespace
+  {
+    /** Resets @p moments to one entry per active cell and lets @p add put
+     * every point with volume of a locally owned cell into its cell's:
+     * add(moments of the cell, reference location, properties, volume). */
+    template <typename Add>
+    void
+    sum_into_cells(const Particles::ParticleHandler<2> &particles,
+                   const BackgroundGrid                &grid,
+                   std::vector<CellMoments>            &moments,
+                   const Add                           &add)
+    {
+      moments.assign(grid.triangulation().n_active_cells(), CellMoments());
+      for (const auto &cell : grid.triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            CellMoments &m = moments[cell->active_cell_index()];
+            for (const auto &particle : particles.particles_in_cell(cell))
+              {
+                const auto   props  = particle.get_properties();
+                const double volume = props[MaterialPoints::Property::volume];
+                if (volume != 0.)
+                  add(m, particle.get_reference_location(), props, volume);
+              }
+          }
+    }
+  } // namespace
+
+
+
   void
   MaterialPoints::compute_cell_moments(std::vector<CellMoments> &moments) const
   {
-    moments.assign(grid.triangulation().n_active_cells(), CellMoments());
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          CellMoments &m = moments[cell->active_cell_index()];
-          for (const auto &particle : particles.particles_in_cell(cell))
-            {
-              const auto   props  = particle.get_properties();
-              const double volume = props[Property::volume];
-              if (volume == 0.)
-                continue;
-              m.add(particle.get_reference_location(),
-                    volume,
-                    Voigt({props[Property::stress],
-                           props[Property::stress + 1],
-                           props[Property::stress + 2]}));
-            }
-        }
+    sum_into_cells(particles,
+                   grid,
+                   moments,
+                   [](CellMoments    &m,
+                      const Point<2> &st,
+                      const auto     &props,
+                      const double    volume) {
+                     m.add(st,
+                           volume,
+                           Voigt({props[Property::stress],
+                                  props[Property::stress + 1],
+                                  props[Property::stress + 2]}));
+                   });
   }
 
 
@@ -204,21 +229,15 @@ namespace bsmpm
   void
   MaterialPoints::compute_mass_moments(std::vector<CellMoments> &moments) const
   {
-    moments.assign(grid.triangulation().n_active_cells(), CellMoments());
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          CellMoments &m = moments[cell->active_cell_index()];
-          for (const auto &particle : particles.particles_in_cell(cell))
-            {
-              const auto   props  = particle.get_properties();
-              const double volume = props[Property::volume];
-              if (volume != 0.)
-                m.add(particle.get_reference_location(),
-                      density(props) * volume,
-                      Voigt());
-            }
-        }
+    sum_into_cells(particles,
+                   grid,
+                   moments,
+                   [this](CellMoments    &m,
+                          const Point<2> &st,
+                          const auto     &props,
+                          const double    volume) {
+                     m.add(st, density(props) * volume, Voigt());
+                   });
   }
 
 
