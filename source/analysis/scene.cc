@@ -202,10 +202,13 @@ namespace bsmpm
                                   "together (layers), for now: Material/"
                                   "Kinematics = finite strain is not "
                                   "available with these regions."));
-    AssertThrow(!initial_stress.enabled(),
-                ExcMessage(what + "the initial stress comes from a gravity "
-                                  "stage for now: Initial stress/K0 "
-                                  "procedure is not available."));
+    AssertThrow(!initial_stress.enabled() || bodies.horizontal_layers(region),
+                ExcMessage(what + "the K0 procedure needs bodies stacked "
+                                  "as horizontal layers (rectangles of the "
+                                  "same width, one on another): Initial "
+                                  "stress/Kind = K0 procedure is not "
+                                  "available with these regions; let a "
+                                  "first stage bring the weight."));
     AssertThrow(!exact_solution,
                 ExcMessage(what + "no exact solution is known: leave "
                                   "Exact solution/Name empty."));
@@ -282,13 +285,21 @@ namespace bsmpm
         }
       if (initial_stress.enabled())
         {
-          const BoundingBox<2> box = region.bounding_box();
-          initial_stress.initialize(box.get_boundary_points().second[1],
-                                    box.get_boundary_points().first[1],
-                                    material,
-                                    gravity,
-                                    *constitutive_model);
-          initial_stress.apply(points, *constitutive_model);
+          const auto layer = [](const LinearElasticMaterial &material,
+                                const ConstitutiveModel     &model,
+                                const BodyRegion            &region) {
+            const auto box = region.bounding_box().get_boundary_points();
+            return InitialStress::Layer{&material,
+                                        &model,
+                                        box.first[1],
+                                        box.second[1]};
+          };
+          std::vector<InitialStress::Layer> layers{
+            layer(material, *constitutive_model, region)};
+          for (const auto &body : bodies.further())
+            layers.push_back(layer(body.material, *body.model, body.region));
+          initial_stress.initialize(layers, gravity);
+          initial_stress.apply(points);
         }
       if (checkpoint.resuming())
         {

@@ -138,6 +138,27 @@ namespace bsmpm
 
 
   bool
+  Bodies::horizontal_layers(const BodyRegion &first_region) const
+  {
+    const std::optional<BodyRegion> filled = filled_rectangle(first_region);
+    if (!filled)
+      return false;
+    const auto whole   = filled->bounding_box().get_boundary_points();
+    const auto as_wide = [&](const BodyRegion &region) {
+      const auto box = region.bounding_box().get_boundary_points();
+      return box.first[0] == whole.first[0] && box.second[0] == whole.second[0];
+    };
+    if (!as_wide(first_region))
+      return false;
+    for (const Body &body : bodies)
+      if (!as_wide(body.region))
+        return false;
+    return true;
+  }
+
+
+
+  bool
   Bodies::in_earlier_body(const Point<2>    &p,
                           const unsigned int k,
                           const BodyRegion  &first_region) const

@@ -2,6 +2,7 @@
 #include <bsmpm/points/material_points.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace bsmpm
@@ -57,8 +58,8 @@ namespace bsmpm
       surface = number(surface_text, "Ground surface");
     if (k0_text != "auto")
       {
-        coefficient = number(k0_text, "K0");
-        AssertThrow(coefficient >= 0,
+        given_k0 = number(k0_text, "K0");
+        AssertThrow(given_k0 >= 0,
                     ExcMessage("Initial stress/K0 = " + k0_text +
                                ": a ratio of stresses, at least 0."));
       }
@@ -67,47 +68,74 @@ namespace bsmpm
 
 
   void
-  InitialStress::initialize(const double                 top,
-                            const double                 bottom,
-                            const LinearElasticMaterial &material,
-                            const Tensor<1, 2>          &gravity,
-                            const ConstitutiveModel     &model)
+  InitialStress::initialize(const std::vector<Layer> &layers,
+                            const Tensor<1, 2>       &gravity)
   {
     if (!k0_procedure)
       return;
-    AssertThrow(material.model() != LinearElasticMaterial::Model::plane_stress,
-                ExcMessage("Initial stress/Kind = K0 procedure is for ground "
-                           "in plane strain; Material/Model is plane "
-                           "stress."));
-    AssertThrow(gravity[0] == 0 && gravity[1] < 0 && material.density() > 0,
-                ExcMessage("Initial stress/Kind = K0 procedure needs the "
-                           "weight of the ground: Material/Density > 0 and "
-                           "Loading/Gravity vertical and downwards (0, -g)."));
-    if (surface_text == "auto")
-      surface = top;
-    if (k0_text == "auto")
-      coefficient = model.at_rest_coefficient();
-    unit_weight = -material.density() * gravity[1];
-
-    // The stress grows in proportion to depth; a convex yield function is
-    // largest at an end of that line: the surface or the body's bottom.
-    const Point<2> deepest(0., bottom);
-    const double   f =
-      model.yield_function(stress(deepest), /*eq_plastic_strain=*/0.);
-    if (f > 0)
+    double highest = -std::numeric_limits<double>::infinity();
+    double lowest  = std::numeric_limits<double>::infinity();
+    for (const Layer &layer : layers)
       {
+        AssertThrow(layer.material->model() !=
+                      LinearElasticMaterial::Model::plane_stress,
+                    ExcMessage("Initial stress/Kind = K0 procedure is for "
+                               "ground in plane strain; Material/Model is "
+                               "plane stress."));
+        AssertThrow(gravity[0] == 0 && gravity[1] < 0 &&
+                      layer.material->density() > 0,
+                    ExcMessage("Initial stress/Kind = K0 procedure needs the "
+                               "weight of the ground: Material/Density > 0 "
+                               "and Loading/Gravity vertical and downwards "
+                               "(0, -g)."));
+        highest = std::max(highest, layer.top);
+        lowest  = std::min(lowest, layer.bottom);
+      }
+    if (surface_text == "auto")
+      surface = highest;
+    bottoms.clear();
+    tops.clear();
+    unit_weights.clear();
+    coefficients.clear();
+    compliances.clear();
+    for (const Layer &layer : layers)
+      {
+        bottoms.push_back(layer.bottom == lowest ?
+                            -std::numeric_limits<double>::infinity() :
+                            layer.bottom);
+        tops.push_back(layer.top == highest ?
+                         std::numeric_limits<double>::infinity() :
+                         layer.top);
+        unit_weights.push_back(-layer.material->density() * gravity[1]);
+        coefficients.push_back(
+          k0_text == "auto" ? layer.model->at_rest_coefficient() : given_k0);
+        compliances.push_back(invert(layer.model->elastic_tangent()));
+      }
+
+    // The stress is affine in depth within a layer; a convex yield
+    // function is largest at an end of that line: the layer's top (or the
+    // surface) or its bottom.
+    for (unsigned int b = 0; b < layers.size(); ++b)
+      {
+        const ConstitutiveModel &model = *layers[b].model;
+        const double             upper = std::min(surface, layers[b].top);
+        const double             lower = std::min(upper, layers[b].bottom);
+        const double             f =
+          model.yield_function(stress(Point<2>(0., lower), b), 0.);
+        if (!(f > 0))
+          continue;
         // Where along the depth it crosses the surface (f(0) <= 0).
         const double f0 =
-          model.yield_function(stress(Point<2>(0., surface)), 0.);
+          model.yield_function(stress(Point<2>(0., upper), b), 0.);
         const double depth =
-          (surface - bottom) * (f0 < 0 ? -f0 / (f - f0) : 0.);
+          (surface - upper) + (upper - lower) * (f0 < 0 ? -f0 / (f - f0) : 0.);
         std::ostringstream message;
-        message << "Initial stress: K0 = " << coefficient
+        message << "Initial stress: K0 = " << coefficients[b]
                 << " puts the ground deeper than " << depth
                 << " m below the surface y = " << surface
                 << " outside the yield surface of the " << model.name()
-                << " material (at the bottom, y = " << bottom
-                << ", the yield function is " << f
+                << " material (at y = " << lower << ", the yield function is "
+                << f
                 << " > 0): the material cannot carry that state at rest. "
                    "Give a K0 nearer 1 (Initial stress/K0), or let a first "
                    "stage bring the ground's weight (Stages).";
@@ -117,26 +145,39 @@ namespace bsmpm
 
 
 
+  double
+  InitialStress::overburden(const double y) const
+  {
+    double weight = 0;
+    for (unsigned int b = 0; b < unit_weights.size(); ++b)
+      weight +=
+        unit_weights[b] *
+        std::max(0., std::min(surface, tops[b]) - std::max(y, bottoms[b]));
+    return weight;
+  }
+
+
+
   SymmetricTensor<2, 3>
-  InitialStress::stress(const Point<2> &x) const
+  InitialStress::stress(const Point<2> &x, const unsigned int body) const
   {
     SymmetricTensor<2, 3> sigma;
-    const double          sigma_v = -unit_weight * std::max(0., surface - x[1]);
-    sigma[0][0]                   = coefficient * sigma_v;
+    const double          sigma_v = -overburden(x[1]);
+    sigma[0][0]                   = coefficients[body] * sigma_v;
     sigma[1][1]                   = sigma_v;
-    sigma[2][2]                   = coefficient * sigma_v;
+    sigma[2][2]                   = coefficients[body] * sigma_v;
     return sigma;
   }
 
 
 
   void
-  InitialStress::apply(MaterialPoints          &points,
-                       const ConstitutiveModel &model) const
+  InitialStress::apply(MaterialPoints &points) const
   {
     if (!k0_procedure)
       return;
-    const SymmetricTensor<4, 3> compliance = invert(model.elastic_tangent());
-    points.set_stress([&](const Point<2> &x) { return stress(x); }, compliance);
+    points.set_stress([&](const Point<2>    &x,
+                          const unsigned int body) { return stress(x, body); },
+                      compliances);
   }
 } // namespace bsmpm

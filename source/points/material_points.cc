@@ -346,16 +346,23 @@ namespace bsmpm
 
   void
   MaterialPoints::set_stress(
-    const std::function<SymmetricTensor<2, 3>(const Point<2> &)> &stress,
-    const SymmetricTensor<4, 3>                                  &compliance)
+    const std::function<SymmetricTensor<2, 3>(const Point<2> &,
+                                              const unsigned int)> &stress,
+    const std::vector<SymmetricTensor<4, 3>>                       &compliances)
   {
     for (auto &particle : particles)
       {
-        const ArrayView<double>     properties = particle.get_properties();
-        const SymmetricTensor<2, 3> sigma = stress(particle.get_location());
-        properties[Property::stress]      = sigma[0][0];
-        properties[Property::stress + 1]  = sigma[1][1];
-        properties[Property::stress + 2]  = sigma[0][1];
+        const ArrayView<double> properties = particle.get_properties();
+        const unsigned int      body =
+          n_point_properties == Property::n_properties_inelastic ?
+                 static_cast<unsigned int>(properties[Property::body]) :
+                 0;
+        const SymmetricTensor<4, 3> &compliance = compliances[body];
+        const SymmetricTensor<2, 3>  sigma =
+          stress(particle.get_location(), body);
+        properties[Property::stress]     = sigma[0][0];
+        properties[Property::stress + 1] = sigma[1][1];
+        properties[Property::stress + 2] = sigma[0][1];
         if (n_point_properties == Property::n_properties_inelastic)
           {
             const SymmetricTensor<2, 3> eps          = compliance * sigma;

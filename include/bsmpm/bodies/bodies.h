@@ -85,6 +85,11 @@ namespace bsmpm
     std::optional<BodyRegion>
     filled_rectangle(const BodyRegion &first_region) const;
 
+    /** Whether the bodies fill a rectangle (filled_rectangle()) as
+     * horizontal layers: each as wide as the rectangle. */
+    bool
+    horizontal_layers(const BodyRegion &first_region) const;
+
     /**
      * Whether @p p lies in the region of a body before body @p k (from 1:
      * a further body; the first body's region is @p first_region): a

@@ -32,6 +32,10 @@ namespace bsmpm
    * gives, without its displacements. A ground that is not level, or a
    * K0 the material cannot carry (refused at setup), wants a gravity stage
    * instead.
+   *
+   * Several bodies stacked as horizontal layers (Bodies) each carry their
+   * own weight and K0: sigma_yy is the weight of all layers above a point,
+   * the horizontal stresses the point's layer's K0 times it.
    */
   class InitialStress
   {
@@ -48,39 +52,44 @@ namespace bsmpm
       return k0_procedure;
     }
 
+    /** A body as a horizontal layer: its material, its constitutive model
+     * (the at-rest coefficient, the yield check) and its heights. */
+    struct Layer
+    {
+      const LinearElasticMaterial *material;
+      const ConstitutiveModel     *model;
+      double                       bottom, top;
+    };
+
     /**
-     * Makes the stress field for a body whose highest point is at
-     * @p top and lowest at @p bottom (the body region's bounding box), of
-     * @p material under @p gravity, with @p model for the at-rest
-     * coefficient. Refuses gravity that is not vertical and downwards, a
-     * plane-stress material, and a K0 that puts the body outside the
-     * model's yield surface (checked at the surface and at the bottom:
-     * the stress is proportional to depth, and a convex yield function is
-     * largest at the ends of that line).
+     * Makes the stress field for the @p layers (one per body, by body
+     * number: the region's lowest and highest point; a single body is one
+     * layer) under @p gravity. The highest layer reaches up to the ground
+     * surface, the lowest down without end. Refuses gravity that is not
+     * vertical and downwards, a plane-stress material, and a K0 that puts
+     * a layer outside its model's yield surface (checked at its top and
+     * bottom: the stress is affine in depth within a layer, and a convex
+     * yield function is largest at the ends of that line).
      */
     void
-    initialize(const double                 top,
-               const double                 bottom,
-               const LinearElasticMaterial &material,
-               const Tensor<1, 2>          &gravity,
-               const ConstitutiveModel     &model);
+    initialize(const std::vector<Layer> &layers, const Tensor<1, 2> &gravity);
 
-    /** The stress at @p x (xx, yy, zz, xy as a tensor in 3D); zero above
-     * the ground surface. */
+    /** The stress at @p x in body @p body (xx, yy, zz, xy as a tensor in
+     * 3D); zero above the ground surface. */
     SymmetricTensor<2, 3>
-    stress(const Point<2> &x) const;
+    stress(const Point<2> &x, const unsigned int body = 0) const;
 
     /** Gives the points their initial stress and, where they store the
-     * state of a nonlinear model, the elastic strain of it (@p model's
-     * elastic compliance). */
+     * state of a nonlinear model, the elastic strain of it (their body's
+     * model's elastic compliance). */
     void
-    apply(MaterialPoints &points, const ConstitutiveModel &model) const;
+    apply(MaterialPoints &points) const;
 
-    /** K0 in use (after initialize()). */
+    /** K0 in use in body @p body (after initialize()). */
     double
-    k0() const
+    k0(const unsigned int body = 0) const
     {
-      return coefficient;
+      return coefficients[body];
     }
 
   private:
@@ -88,8 +97,17 @@ namespace bsmpm
     std::string surface_text = "auto";
     std::string k0_text      = "auto";
     double      surface      = 0;
-    double      unit_weight  = 0;
-    double      coefficient  = 0;
+    /** The given K0 (k0_text not auto). */
+    double given_k0 = 0;
+    /** Per layer, by body: its heights (the highest up to the surface,
+     * the lowest without end below), unit weight and K0, and the elastic
+     * compliance of its model. */
+    std::vector<double> bottoms, tops, unit_weights, coefficients;
+    std::vector<SymmetricTensor<4, 3>> compliances;
+
+    /** -sigma_yy at height @p y: the weight of the layers above it. */
+    double
+    overburden(const double y) const;
   };
 } // namespace bsmpm
 

@@ -261,8 +261,9 @@ namespace bsmpm
      * @p compliance : stress that carries it (InitialStress). */
     void
     set_stress(
-      const std::function<SymmetricTensor<2, 3>(const Point<2> &)> &stress,
-      const SymmetricTensor<4, 3>                                  &compliance);
+      const std::function<SymmetricTensor<2, 3>(const Point<2> &,
+                                                const unsigned int)> &stress,
+      const std::vector<SymmetricTensor<4, 3>> &compliances);
 
     /**
      * Removes the material points (with volume) for which @p inside is true

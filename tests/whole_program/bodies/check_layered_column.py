@@ -16,6 +16,11 @@ M = E (1 - nu) / ((1 + nu) (1 - 2 nu)), interface at height a, top H.
    stiffness and weight.
 3. --refine: the interface inside a cell at h = 0.5, 0.25, 0.125; the
    error must fall.
+4. The K0 procedure on the two layers: each point starts with the weight of
+   the layers above it and its own layer's K0 = nu / (1 - nu); the column
+   is then in equilibrium (no displacement), and the largest stress, at
+   the lowest row of points (y = h / 4, in the base), is
+   |(K0_2 sigma_v, sigma_v)| with sigma_v the weight of both layers above.
 """
 import argparse
 import pathlib
@@ -97,6 +102,19 @@ if args.refine:
         print(f"h = {h}, interface at {a}: relative error {errors[-1]:.2e}")
     if not all(f < c for c, f in zip(errors, errors[1:])):
         problems.append(f"the error does not fall: {errors}")
+summary = run(args.bsmpm, args.prm, args.np,
+              ["Initial stress/Kind=K0 procedure", "Output/Interval=0"])
+q = summary["steps"][-1]["quantities"]
+y = 0.5 / 4
+sigma_v = g * (soft["rho"] * (H - 4.0) + stiff["rho"] * (4.0 - y))
+k0 = stiff["nu"] / (1 - stiff["nu"])
+exact = sigma_v * (1 + k0 * k0) ** 0.5
+error = abs(q["max_stress"] / exact - 1)
+print(f"K0 procedure: largest displacement {q['max_displacement']:.3g}, "
+      f"largest stress {q['max_stress']:.10g} against {exact:.10g} "
+      f"(relative error {error:.2e})")
+if not (q["max_displacement"] < 1e-12 and error < 1e-12):
+    problems.append("K0 procedure: not the layers' state at rest")
 for p in problems:
     print("FAIL:", p)
 sys.exit(1 if problems else 0)
