@@ -212,12 +212,6 @@ namespace bsmpm
     AssertThrow(!exact_solution,
                 ExcMessage(what + "no exact solution is known: leave "
                                   "Exact solution/Name empty."));
-    for (unsigned int k = 1; k <= stages.n_stages(); ++k)
-      AssertThrow(stages.stage(k).excavation.empty(),
-                  ExcMessage(what +
-                             "excavation is not available yet: "
-                             "Stages/Stage " +
-                             std::to_string(k) + "/Excavation."));
   }
 
 
@@ -585,14 +579,13 @@ namespace bsmpm
         std::vector<Point<2>> tracked;
         std::vector<Voigt>    stresses;
         points.tracked_states(tracked, stresses);
-        const auto removed =
-          excavation.remove(stages.stage(k).excavation,
-                            points,
-                            grid,
-                            assembly->kernel(),
-                            before.gravity * material.density() * gravity,
-                            tracked,
-                            where);
+        const auto removed = excavation.remove(stages.stage(k).excavation,
+                                               points,
+                                               grid,
+                                               assembly->kernel(),
+                                               before.gravity * gravity,
+                                               tracked,
+                                               where);
         run_summary.quantities["excavated_points"] += removed;
         pcout << "       " << removed << " points excavated\n";
       }

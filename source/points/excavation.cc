@@ -15,7 +15,7 @@ namespace bsmpm
                      MaterialPoints              &points,
                      const BackgroundGrid        &grid,
                      const Q1CellKernel          &kernel,
-                     const Tensor<1, 2>          &body_force,
+                     const Tensor<1, 2>          &gravity,
                      const std::vector<Point<2>> &curve_points,
                      const std::string           &where)
   {
@@ -50,9 +50,11 @@ namespace bsmpm
           AssertThrow(false, ExcMessage(message.str()));
         }
 
-    std::vector<CellMoments>    moments;
+    std::vector<CellMoments>    moments, masses;
     const types::particle_index n = points.remove_points(
-      [&](const Point<2> &x) { return polygon_contains(polygon, x); }, moments);
+      [&](const Point<2> &x) { return polygon_contains(polygon, x); },
+      moments,
+      masses);
 
     forces.clear();
     Vector<double> internal(8), external(8);
@@ -65,7 +67,9 @@ namespace bsmpm
           internal = 0;
           external = 0;
           kernel.add_internal_force(m, internal);
-          kernel.add_body_force(m, body_force, external);
+          kernel.add_body_force(masses[cell->active_cell_index()],
+                                gravity,
+                                external);
           CellForces                           released;
           std::vector<types::global_dof_index> dofs(8);
           cell->get_dof_indices(dofs);

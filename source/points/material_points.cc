@@ -380,9 +380,11 @@ namespace bsmpm
   types::particle_index
   MaterialPoints::remove_points(
     const std::function<bool(const Point<2> &)> &inside,
-    std::vector<CellMoments>                    &moments)
+    std::vector<CellMoments>                    &moments,
+    std::vector<CellMoments>                    &masses)
   {
     moments.assign(grid.triangulation().n_active_cells(), CellMoments());
+    masses.assign(grid.triangulation().n_active_cells(), CellMoments());
     std::vector<Particles::ParticleHandler<2>::particle_iterator> removed;
     for (auto particle = particles.begin(); particle != particles.end();
          ++particle)
@@ -398,6 +400,10 @@ namespace bsmpm
               Voigt({properties[Property::stress],
                      properties[Property::stress + 1],
                      properties[Property::stress + 2]}));
+            masses[cell->active_cell_index()].add(
+              particle->get_reference_location(),
+              density(properties) * properties[Property::volume],
+              Voigt());
             removed.push_back(particle);
           }
       }

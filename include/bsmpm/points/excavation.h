@@ -44,8 +44,9 @@ namespace bsmpm
   public:
     /**
      * Removes the material points inside @p polygon from @p points and
-     * keeps the forces they exerted on the rest under the body force
-     * @p body_force (per unit volume). @p curve_points are the positions of
+     * keeps the forces they exerted on the rest under the gravity
+     * @p gravity (times its load multiplier; the points' masses from their
+     * bodies' densities). @p curve_points are the positions of
      * the tracked points (boundary curves, probe): the cut's face does not
      * yet become a curve, so a polygon that holds one of them, or comes
      * within a cell of one, is refused (the message names @p where).
@@ -56,7 +57,7 @@ namespace bsmpm
            MaterialPoints              &points,
            const BackgroundGrid        &grid,
            const Q1CellKernel          &kernel,
-           const Tensor<1, 2>          &body_force,
+           const Tensor<1, 2>          &gravity,
            const std::vector<Point<2>> &curve_points,
            const std::string           &where);
 

@@ -268,12 +268,15 @@ namespace bsmpm
     /**
      * Removes the material points (with volume) for which @p inside is true
      * at their position, after adding their volumes and stresses to
-     * @p moments (indexed by active_cell_index(), as compute_cell_moments())
-     * (Excavation). Returns how many were removed on all processes.
+     * @p moments and their masses to @p masses (indexed by
+     * active_cell_index(), as compute_cell_moments() and
+     * compute_mass_moments()) (Excavation). Returns how many were removed
+     * on all processes.
      */
     types::particle_index
     remove_points(const std::function<bool(const Point<2> &)> &inside,
-                  std::vector<CellMoments>                    &moments);
+                  std::vector<CellMoments>                    &moments,
+                  std::vector<CellMoments>                    &masses);
 
     /** Sets the total displacements of all points to zero (a stage that
      * measures its own displacements); positions, strains, stresses and
