@@ -11,7 +11,7 @@ M = E (1 - nu) / ((1 + nu) (1 - 2 nu)), interface at height a, top H.
    exact to round-off (the bilinear grid holds the exact values at its
    nodes in one-dimensional compression), also with the layers' body
    numbers swapped (the stiff layer the first body).
-2. Interface inside a cell (a = 4.25, 4.375): the settlement within
+2. Interface inside a cell (a = 4.25): the settlement within
    --inside-tolerance, the points of each side carrying their own body's
    stiffness and weight.
 3. --refine: the interface inside a cell at h = 0.5, 0.25, 0.125; the
@@ -85,7 +85,7 @@ for swapped in (False, True):
     if not error < 1e-10:
         problems.append(f"on a grid line{' (swapped)' if swapped else ''}: "
                         f"relative error {error:.2e}")
-for a in (4.25, 4.375):
+for a in (4.25,):
     u = settlement(a)
     exact = exact_top(a, soft, stiff)
     error = abs(u / exact - 1)

@@ -30,6 +30,8 @@ parser.add_argument("--bottom", type=float, default=1.0,
                     help="the body's lowest y")
 parser.add_argument("--cuts", default="3.0,3.1",
                     help="heights of the cut, comma-separated")
+parser.add_argument("--quadratures", default="moment fitting,plain",
+                    help="Cut cells/Quadrature of the runs, comma-separated")
 parser.add_argument("--quantities", default="curve1_force_y,max_displacement",
                     help="the summary's quantities that must agree")
 parser.add_argument("--set", action="append", default=[],
@@ -63,7 +65,7 @@ def quantities(cut, quadrature):
 
 
 problems = []
-for quadrature in ("moment fitting", "plain"):
+for quadrature in args.quadratures.split(","):
     one = quantities(None, quadrature)
     for cut in (float(c) for c in args.cuts.split(",")):
         two = quantities(cut, quadrature)
