@@ -117,11 +117,16 @@ namespace bsmpm
     // Contact makes every run nonlinear (Newton iterations decide where the
     // curves touch), and so do several bodies (every point is integrated
     // with its body's model).
+    bool nonlinear_bodies = false;
+    for (const auto &body : bodies.further())
+      nonlinear_bodies = nonlinear_bodies || !body.model->is_linear();
     constitutive_update =
       ConstitutiveUpdate::create(prm,
                                  *constitutive_model,
                                  material,
-                                 contact.enabled() || bodies.several());
+                                 contact.enabled() || bodies.several(),
+                                 contact.enabled(),
+                                 nonlinear_bodies);
     if (bodies.several())
       {
         std::vector<const ConstitutiveModel *> models;

@@ -63,7 +63,9 @@ namespace bsmpm
   ConstitutiveUpdate::create(ParameterHandler            &prm,
                              const ConstitutiveModel     &model,
                              const LinearElasticMaterial &material,
-                             const bool                   newton)
+                             const bool                   newton,
+                             const bool                   contact,
+                             const bool                   nonlinear_bodies)
   {
     prm.enter_subsection("Material");
     const bool b_bar         = prm.get("Volumetric strain") == "B-bar";
@@ -74,9 +76,15 @@ namespace bsmpm
                 ExcMessage("Material/Kinematics = finite strain needs "
                            "'Model = plane strain': in plane stress the "
                            "thickness stretch would be a further unknown."));
+    // The volumetric mean per cell where a model flows isochorically, and
+    // for linear elasticity in small strain as in the linear path, except
+    // with contact (doc/b-bar.md, "Limitations").
+    const bool nonlinear = !model.is_linear() || nonlinear_bodies;
+    const bool mean_volumetric_strain =
+      b_bar && (nonlinear || (!finite_strain && !contact));
     if (!model.is_linear() || finite_strain || newton)
       return std::make_unique<ConstitutiveUpdate>(model,
-                                                  b_bar && !model.is_linear(),
+                                                  mean_volumetric_strain,
                                                   finite_strain ?
                                                     Kinematics::finite_strain :
                                                     Kinematics::small_strain);

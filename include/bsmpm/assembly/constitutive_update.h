@@ -65,15 +65,20 @@ namespace bsmpm
      * The update that @p model needs with the kinematics and volumetric
      * strain of section "Material": null for a linear model in small
      * strain, which the linear system integrates itself, unless
-     * @p newton (something else, contact, needs Newton iterations). Throws
-     * if finite strain is asked of a @p material that is not in plane
-     * strain.
+     * @p newton (something else, contact or several bodies, needs Newton
+     * iterations). B-bar (F-bar) applies where a nonlinear model needs it,
+     * @p nonlinear_bodies (another body's model is nonlinear) included,
+     * and to linear elasticity in small strain without @p contact, whose
+     * pressures a mean per cell makes alternate. Throws if finite strain
+     * is asked of a @p material that is not in plane strain.
      */
     static std::unique_ptr<ConstitutiveUpdate>
     create(ParameterHandler            &prm,
            const ConstitutiveModel     &model,
            const LinearElasticMaterial &material,
-           const bool                   newton = false);
+           const bool                   newton           = false,
+           const bool                   contact          = false,
+           const bool                   nonlinear_bodies = false);
 
     /** Whether "Material/Volumetric strain" is B-bar: what the linear path
      * (Q1CellKernel) takes when create() returns no update. */
@@ -683,7 +688,7 @@ namespace bsmpm
     const Kinematics   point_kinematics;
     bool               quadrature_weights = false;
     /** See use_cut_cell_quadrature(). */
-    const std::vector<CellMoments> *exact_moments = nullptr;
+    const std::vector<CellMoments> *exact_moments      = nullptr;
     double                          gravity_multiplier = 0;
     Tensor<1, 2>                    body_gravity;
     std::vector<double>             body_densities = {0.};
