@@ -302,8 +302,7 @@ namespace bsmpm
                           moments,
                           cell_quality);
         assembly.check_loads_finite(step);
-        parts.constitutive_update->set_body_force(level.gravity,
-                                                  parts.gravity);
+        parts.constitutive_update->set_body_force(level.gravity, parts.gravity);
 
         IncrementSolver::LinearSolves solves;
         double                        load_increment = 0;
