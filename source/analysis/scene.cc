@@ -107,6 +107,12 @@ namespace bsmpm
     material.parse_parameters(prm);
     constitutive_model = create_constitutive_model(prm);
     bodies.parse_parameters(prm, strength_factor);
+    {
+      std::vector<std::vector<std::string>> construction;
+      for (unsigned int k = 1; k <= stages.n_stages(); ++k)
+        construction.push_back(stages.stage(k).construction);
+      bodies.build_in_stages(construction);
+    }
     // With several bodies only those with a strength are weakened (an
     // elastic structure on the soil keeps its stiffness).
     if (strength_factor != 1. &&
@@ -217,6 +223,24 @@ namespace bsmpm
     AssertThrow(!exact_solution,
                 ExcMessage(what + "no exact solution is known: leave "
                                   "Exact solution/Name empty."));
+    if (!bodies.built_later())
+      return;
+    unsigned int builds = 2;
+    while (stages.stage(builds).construction.empty())
+      ++builds;
+    AssertThrow(!finite_strain(),
+                ExcMessage("Stages/Stage " + std::to_string(builds) +
+                           "/Construction builds bodies in small strain, for "
+                           "now: Material/Kinematics = finite strain is not "
+                           "available with it."));
+    const unsigned int last = stages.n_stages();
+    AssertThrow(!displacement_control.enabled() ||
+                  stages.stage(last).construction.empty(),
+                ExcMessage("Stages/Stage " + std::to_string(last) +
+                           "/Construction: Loading/Control = displacement "
+                           "drives the last stage by its load factor, which "
+                           "cannot also build a body; build it in a stage "
+                           "before."));
   }
 
 
@@ -253,25 +277,27 @@ namespace bsmpm
         return boundary_curves.trims(p);
       };
       points.generate(layout, region, trimmed);
-      std::vector<double> densities{material.density()};
+      densities = {material.density()};
       for (unsigned int k = 0; k < bodies.further().size(); ++k)
         {
           const Bodies::Body &body = bodies.further()[k];
-          points.add_body(body.layout,
-                          body.region,
-                          k + 1,
-                          body.section,
-                          [&](const Point<2> &p) {
-                            return trimmed(p) ||
-                                   bodies.in_earlier_body(p, k + 1, region);
-                          });
+          // A body that a later stage builds keeps its ids for then.
+          if (body.stage > 1)
+            first_ids[k + 1] = points.reserve_ids(body.layout);
+          else
+            points.add_body(body.layout,
+                            body.region,
+                            k + 1,
+                            body.section,
+                            [&](const Point<2> &p) {
+                              return trimmed(p) ||
+                                     bodies.in_earlier_body(p, k + 1, region);
+                            });
           densities.push_back(body.material.density());
         }
-      points.set_densities(densities);
-      if (constitutive_update)
-        constitutive_update->set_densities(densities);
+      set_weight_shares(0.);
       if (bodies.several())
-        bodies.check_overlaps(points, region, communicator);
+        bodies.check_overlaps(points, grid, region, communicator);
       std::vector<types::particle_index> tracked;
       if (!boundary_curves.empty())
         tracked = boundary_curves.create_points(points, curve_region);
@@ -296,7 +322,10 @@ namespace bsmpm
           std::vector<InitialStress::Layer> layers{
             layer(material, *constitutive_model, region)};
           for (const auto &body : bodies.further())
-            layers.push_back(layer(body.material, *body.model, body.region));
+            {
+              layers.push_back(layer(body.material, *body.model, body.region));
+              layers.back().present = body.stage == 1;
+            }
           initial_stress.initialize(layers, gravity);
           initial_stress.apply(points);
         }
@@ -305,6 +334,7 @@ namespace bsmpm
           // The checkpoint's points replace those generated as at the
           // start, which gave the same ids, slots and initial positions.
           checkpoint.read_points(points);
+          points.count_material_points();
           if (!tracked.empty())
             points.track(tracked);
         }
@@ -315,6 +345,10 @@ namespace bsmpm
       if (bodies.several() && !filled)
         cut_cell_quadrature.switch_off(
           "several bodies that do not fill a rectangle together");
+      // A body built later has no curves round it: the cells it fills are
+      // integrated by their points.
+      if (bodies.built_later())
+        cut_cell_quadrature.switch_off("bodies built by a later stage");
     }
     InputChecks::check_supports(grid, boundary_curves, contact.enabled());
     {
@@ -396,14 +430,14 @@ namespace bsmpm
                          constitutive_update.get(),
                          curve_contact,
                          increment},
-      LoadStepper::Phases{[this]() -> const std::vector<CellMoments> & {
-                            return compute_cell_moments();
-                          },
-                          [this](const unsigned int   step,
-                                 const LoadIncrement &increment) {
-                            move_points(step, increment);
-                            update_curves(step);
-                          }},
+      LoadStepper::Phases{
+        [this](const double tau) -> const std::vector<CellMoments> & {
+          return compute_cell_moments(tau);
+        },
+        [this](const unsigned int step, const LoadIncrement &increment) {
+          move_points(step, increment);
+          update_curves(step);
+        }},
       timer,
       pcout,
       run_summary.quantities);
@@ -421,8 +455,10 @@ namespace bsmpm
 
 
   const std::vector<CellMoments> &
-  Scene::compute_cell_moments()
+  Scene::compute_cell_moments(const double tau)
   {
+    if (bodies.built_later())
+      set_weight_shares(tau);
     if (points_moved)
       {
         TimerOutput::Scope t(timer, "sort points");
@@ -449,6 +485,49 @@ namespace bsmpm
     if (constitutive_update && constitutive_update->completes_moments())
       points.exchange_neighbourhood_state();
     return cell_moments;
+  }
+
+
+
+  void
+  Scene::set_weight_shares(const double tau)
+  {
+    std::vector<double> weighed = densities;
+    for (unsigned int k = 0; k < bodies.further().size(); ++k)
+      weighed[k + 1] *=
+        LoadStages::weight_share(tau, bodies.further()[k].stage);
+    points.set_densities(weighed);
+    if (constitutive_update)
+      constitutive_update->set_densities(weighed);
+  }
+
+
+
+  void
+  Scene::build_bodies(const unsigned int k)
+  {
+    for (unsigned int b = 0; b < bodies.further().size(); ++b)
+      {
+        const Bodies::Body &body = bodies.further()[b];
+        if (body.stage != k)
+          continue;
+        // Where the region says, in the coordinates of the start: on ground
+        // that has settled a little, the grid's field bonds the body across
+        // the gap, as it does across a cell. No curve trims it.
+        const types::particle_index n = points.add_body(
+          body.layout,
+          body.region,
+          b + 1,
+          body.section,
+          [&](const Point<2> &p) {
+            return bodies.in_earlier_body(p, b + 1, region);
+          },
+          first_ids.at(b + 1));
+        points_moved = true;
+        run_summary.quantities["built_points"] += n;
+        pcout << "       " << body.name << " (" << body.section
+              << ") built: " << n << " points\n";
+      }
   }
 
 
@@ -575,6 +654,9 @@ namespace bsmpm
         pcout << ", displacements from zero";
       }
     pcout << '\n';
+    // The weights at the stage's start (a run resumed here starts at 0).
+    if (bodies.built_later())
+      set_weight_shares(k - 1.);
     if (!stages.stage(k).excavation.empty())
       {
         const std::string where =
@@ -594,6 +676,8 @@ namespace bsmpm
         run_summary.quantities["excavated_points"] += removed;
         pcout << "       " << removed << " points excavated\n";
       }
+    if (k > 1)
+      build_bodies(k);
   }
 
 

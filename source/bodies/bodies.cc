@@ -1,6 +1,8 @@
 #include <bsmpm/base/exception_message.h>
 #include <bsmpm/bodies/bodies.h>
 
+#include <algorithm>
+
 namespace bsmpm
 {
   namespace
@@ -110,14 +112,64 @@ namespace bsmpm
 
 
 
+  void
+  Bodies::build_in_stages(
+    const std::vector<std::vector<std::string>> &names_by_stage)
+  {
+    for (Body &body : bodies)
+      body.stage = 1;
+    for (unsigned int k = 1; k <= names_by_stage.size(); ++k)
+      for (const std::string &name : names_by_stage[k - 1])
+        {
+          const std::string where =
+            "Stages/Stage " + std::to_string(k) + "/Construction = " + name;
+          const auto body =
+            std::find_if(bodies.begin(), bodies.end(), [&](const Body &b) {
+              return b.name == name;
+            });
+          std::string names;
+          for (const Body &b : bodies)
+            names += (names.empty() ? "" : ", ") + b.name;
+          AssertThrow(body != bodies.end(),
+                      ExcMessage(where +
+                                 ": no further body has that name (they "
+                                 "are: " +
+                                 (names.empty() ? "none" : names) +
+                                 "; the first body is there from the "
+                                 "start)."));
+          AssertThrow(k > 1,
+                      ExcMessage(where +
+                                 ": stage 1 starts the analysis, with every "
+                                 "body there; build it in a later stage."));
+          AssertThrow(body->stage == 1,
+                      ExcMessage(where + ": " + body->section +
+                                 " is built by stage " +
+                                 std::to_string(body->stage) + " already."));
+          body->stage = k;
+        }
+  }
+
+
+
+  bool
+  Bodies::built_later() const
+  {
+    return std::any_of(bodies.begin(), bodies.end(), [](const Body &body) {
+      return body.stage > 1;
+    });
+  }
+
+
+
   std::optional<BodyRegion>
   Bodies::filled_rectangle(const BodyRegion &first_region) const
   {
-    if (bodies.empty())
-      return first_region;
     std::vector<const BodyRegion *> regions{&first_region};
     for (const Body &body : bodies)
-      regions.push_back(&body.region);
+      if (body.stage == 1)
+        regions.push_back(&body.region);
+    if (regions.size() == 1)
+      return first_region;
     BoundingBox<2> box  = first_region.bounding_box();
     double         area = 0;
     for (const BodyRegion *region : regions)
@@ -151,7 +203,7 @@ namespace bsmpm
     if (!as_wide(first_region))
       return false;
     for (const Body &body : bodies)
-      if (!as_wide(body.region))
+      if (body.stage == 1 && !as_wide(body.region))
         return false;
     return true;
   }
@@ -163,10 +215,19 @@ namespace bsmpm
                           const unsigned int k,
                           const BodyRegion  &first_region) const
   {
-    if (first_region.contains(p))
-      return true;
-    for (unsigned int j = 1; j < k; ++j)
-      if (bodies[j - 1].region.contains(p))
+    // Earlier: built in an earlier stage, or in the same one with a lower
+    // number (the first body is there from the start).
+    const auto stage_of = [this](const unsigned int j) {
+      return j == 0 ? 1u : bodies[j - 1].stage;
+    };
+    const auto region_of = [&](const unsigned int j) -> const BodyRegion & {
+      return j == 0 ? first_region : bodies[j - 1].region;
+    };
+    for (unsigned int j = 0; j <= bodies.size(); ++j)
+      if (j != k &&
+          (stage_of(j) < stage_of(k) ||
+           (stage_of(j) == stage_of(k) && j < k)) &&
+          region_of(j).contains(p))
         return true;
     return false;
   }
@@ -175,6 +236,7 @@ namespace bsmpm
 
   void
   Bodies::check_overlaps(const MaterialPoints &points,
+                         const BackgroundGrid &grid,
                          const BodyRegion     &first_region,
                          const MPI_Comm        communicator) const
   {
@@ -190,16 +252,31 @@ namespace bsmpm
     // (n, n) for none; the smallest pair over all processes is reported.
     const unsigned int n     = regions.size();
     unsigned int       found = n * n;
+    const auto         test  = [&](const unsigned int b, const Point<2> &p) {
+      for (unsigned int j = 0; j < n; ++j)
+        if (j != b && strictly_inside(*regions[j], p))
+          found = std::min(found, b * n + j);
+    };
     for (const auto &particle : points.particle_handler())
       {
         const auto props = particle.get_properties();
-        if (props[Property::volume] == 0.)
-          continue;
-        const unsigned int b = static_cast<unsigned int>(props[Property::body]);
-        for (unsigned int j = 0; j < n; ++j)
-          if (j != b && strictly_inside(*regions[j], particle.get_location()))
-            found = std::min(found, b * n + j);
+        if (props[Property::volume] != 0.)
+          test(static_cast<unsigned int>(props[Property::body]),
+               particle.get_location());
       }
+    // The bodies that later stages build, by the points they will have.
+    for (unsigned int k = 1; k <= bodies.size(); ++k)
+      if (bodies[k - 1].stage > 1)
+        bodies[k - 1].layout.for_each_point(
+          grid,
+          bodies[k - 1].region,
+          [&](const MaterialPointLayout::CellIndex &ij) {
+            return grid.locally_owned_cell(ij) != grid.dof_handler().end();
+          },
+          [&](const Point<2> &p, double, unsigned long) {
+            if (!in_earlier_body(p, k, first_region))
+              test(k, p);
+          });
     found = Utilities::MPI::min(found, communicator);
     AssertThrow(found == n * n,
                 ExcMessage(sections[found / n] + " and " + sections[found % n] +

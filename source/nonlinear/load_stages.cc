@@ -1,3 +1,5 @@
+#include <deal.II/base/utilities.h>
+
 #include <bsmpm/base/parameter_tools.h>
 #include <bsmpm/nonlinear/load_stages.h>
 
@@ -79,6 +81,15 @@ namespace bsmpm
           "must stay more than a cell away from it (the cut's face is the "
           "edge of the points left).");
         prm.declare_entry(
+          "Construction",
+          "",
+          Patterns::Anything(),
+          "Names of further bodies ('Body k/Name', separated by commas) "
+          "that the stage builds (small strain): their points appear at "
+          "the stage's start where their regions say, without stress, and "
+          "their weight grows with the stage's load steps. Empty: none. A "
+          "body that no stage builds is there from the start.");
+        prm.declare_entry(
           "Detect collapse",
           "default",
           Patterns::Selection("default|on|off"),
@@ -125,6 +136,10 @@ namespace bsmpm
         stage.detect_collapse     = prm.get("Detect collapse");
         stage.excavation          = ParameterTools::parse_points(
           prm.get("Excavation"), "Stages/" + stage_section(k) + "/Excavation");
+        for (const std::string &name :
+             Utilities::split_string_list(prm.get("Construction")))
+          if (!name.empty())
+            stage.construction.push_back(name);
         stages.push_back(stage);
         prm.leave_subsection();
       }

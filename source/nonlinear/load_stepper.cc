@@ -129,9 +129,9 @@ namespace bsmpm
 
 
   const std::vector<CellMoments> &
-  LoadStepper::prepare_increment(const unsigned int cuts)
+  LoadStepper::prepare_increment(const unsigned int cuts, const double tau)
   {
-    const std::vector<CellMoments> &moments = phases.cell_moments();
+    const std::vector<CellMoments> &moments = phases.cell_moments(tau);
     parts.assembly.make_constraints(moments);
     cell_quality =
       parts.assembly.support_qualities(moments, parts.constitutive_update);
@@ -168,8 +168,9 @@ namespace bsmpm
     record.increments                   = 0;
     while (lambda < to - 1e-12 * (to - from))
       {
-        delta                                   = std::min(delta, to - lambda);
-        const std::vector<CellMoments> &moments = prepare_increment(cuts);
+        delta = std::min(delta, to - lambda);
+        const std::vector<CellMoments> &moments =
+          prepare_increment(cuts, lambda + delta);
         const LoadLevel end = parts.stages.level(lambda + delta);
         // The prescribed displacements change with the loads multiplier
         // (not in a stage that keeps it, such as the ground's weight alone).
@@ -287,7 +288,10 @@ namespace bsmpm
     while (done < step_increment * (1 - 1e-12))
       {
         portion = std::min(portion, step_increment - done);
-        const std::vector<CellMoments> &moments = prepare_increment(cuts);
+        // (No body is built under displacement control: the load factor
+        // is the iterations' unknown.)
+        const std::vector<CellMoments> &moments =
+          prepare_increment(cuts, controlled_load_factor);
         // The loads of load factor 1, then the system at the load factor
         // reached: the load increment is the Newton iterations' unknown.
         assembly.reference_loads(moments,

@@ -77,6 +77,8 @@ namespace bsmpm
     double lowest  = std::numeric_limits<double>::infinity();
     for (const Layer &layer : layers)
       {
+        if (!layer.present)
+          continue;
         AssertThrow(layer.material->model() !=
                       LinearElasticMaterial::Model::plane_stress,
                     ExcMessage("Initial stress/Kind = K0 procedure is for "
@@ -106,7 +108,8 @@ namespace bsmpm
         tops.push_back(layer.top == highest ?
                          std::numeric_limits<double>::infinity() :
                          layer.top);
-        unit_weights.push_back(-layer.material->density() * gravity[1]);
+        unit_weights.push_back(
+          layer.present ? -layer.material->density() * gravity[1] : 0.);
         coefficients.push_back(
           k0_text == "auto" ? layer.model->at_rest_coefficient() : given_k0);
         compliances.push_back(invert(layer.model->elastic_tangent()));
@@ -117,6 +120,8 @@ namespace bsmpm
     // surface) or its bottom.
     for (unsigned int b = 0; b < layers.size(); ++b)
       {
+        if (!layers[b].present)
+          continue;
         const ConstitutiveModel &model = *layers[b].model;
         const double             upper = std::min(surface, layers[b].top);
         const double             lower = std::min(upper, layers[b].bottom);

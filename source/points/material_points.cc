@@ -94,8 +94,9 @@ namespace bsmpm
     const unsigned int n_cells = grid.n_cells(0) * grid.n_cells(1);
     particles.reserve(layout.n_candidates(grid) / n_cells *
                       grid.triangulation().n_locally_owned_active_cells());
-    next_id           = 0;
-    n_material_points = insert_body(layout, region, 0, excluded);
+    next_id = 0;
+    n_material_points =
+      insert_body(layout, region, 0, excluded, reserve_ids(layout));
     AssertThrow(n_material_points > 0,
                 ExcMessage("Material points: the body region holds no "
                            "material point of the chosen layout."));
@@ -103,20 +104,53 @@ namespace bsmpm
 
 
 
-  void
+  types::particle_index
   MaterialPoints::add_body(
     const MaterialPointLayout                   &layout,
     const BodyRegion                            &region,
     const unsigned int                           body,
     const std::string                           &section,
-    const std::function<bool(const Point<2> &)> &excluded)
+    const std::function<bool(const Point<2> &)> &excluded,
+    const std::optional<types::particle_index>  &first_id)
   {
-    const types::particle_index n = insert_body(layout, region, body, excluded);
+    const types::particle_index n =
+      insert_body(layout,
+                  region,
+                  body,
+                  excluded,
+                  first_id ? *first_id : reserve_ids(layout));
     AssertThrow(n > 0,
                 ExcMessage(section +
                            ": the body region holds no material point of "
                            "the chosen layout."));
     n_material_points += n;
+    neighbourhood_current = false;
+    find_material_cells();
+    return n;
+  }
+
+
+
+  types::particle_index
+  MaterialPoints::reserve_ids(const MaterialPointLayout &layout)
+  {
+    const types::particle_index first = next_id;
+    next_id += layout.n_candidates(grid);
+    return first;
+  }
+
+
+
+  void
+  MaterialPoints::count_material_points()
+  {
+    types::particle_index n = 0;
+    for (const auto &particle : particles)
+      if (particle.get_properties()[Property::volume] > 0)
+        ++n;
+    n_material_points     = Utilities::MPI::sum(n, grid.mpi_communicator());
+    neighbourhood_current = false;
+    find_material_cells();
   }
 
 
@@ -126,13 +160,12 @@ namespace bsmpm
     const MaterialPointLayout                   &layout,
     const BodyRegion                            &region,
     const unsigned int                           body,
-    const std::function<bool(const Point<2> &)> &excluded)
+    const std::function<bool(const Point<2> &)> &excluded,
+    const types::particle_index                  first)
   {
     // Each process creates the points of its own cells, with the index of
     // the layout's enumeration (after the earlier bodies' candidates) as
     // id: unique and partition-independent.
-    const types::particle_index first = next_id;
-    next_id += layout.n_candidates(grid);
     types::particle_index n_here = 0;
     layout.for_each_point(
       grid,

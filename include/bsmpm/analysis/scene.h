@@ -42,6 +42,7 @@
 #include <bsmpm/verification/exact_solution.h>
 #include <bsmpm/verification/verification.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -126,9 +127,18 @@ namespace bsmpm
     void
     make_solvers();
     /** Material moments of every cell, plain or by the cut-cell quadrature,
-     * of the points sorted into cells if they moved. */
+     * of the points sorted into cells if they moved, for an increment that
+     * ends at load path parameter @p tau (set_weight_shares()). */
     const std::vector<CellMoments> &
-    compute_cell_moments();
+    compute_cell_moments(const double tau);
+    /** Bodies built by a stage: the densities that weigh the points, each
+     * body's times the share of its weight it carries at load path
+     * parameter @p tau (LoadStages::weight_share()). */
+    void
+    set_weight_shares(const double tau);
+    /** Stage @p k's start: adds the bodies it builds. */
+    void
+    build_bodies(const unsigned int k);
     /** Moves the points by the converged increment of load step @p step,
      * whose prescribed displacements changed over @p load_increment. */
     void
@@ -225,6 +235,11 @@ namespace bsmpm
     std::vector<CellMoments> cell_moments;
     /** Several bodies: the moments of the points' masses (body force). */
     std::vector<CellMoments> mass_moments;
+    /** The density of every body, by Property::body. */
+    std::vector<double> densities;
+    /** Bodies built by a stage: the first id of their points, by body
+     * number (MaterialPoints::reserve_ids()). */
+    std::map<unsigned int, types::particle_index> first_ids;
 
     RunSummary run_summary;
   };

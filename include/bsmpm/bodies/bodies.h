@@ -47,6 +47,9 @@ namespace bsmpm
       std::shared_ptr<const ConstitutiveModel> model;
       /** Its parameter section, for messages: "Body 2". */
       std::string section;
+      /** The stage that builds it (Stages/Stage k/Construction); 1: there
+       * from the start. */
+      unsigned int stage = 1;
     };
 
     /** Declares "Body 2" .. "Body 4". */
@@ -74,13 +77,25 @@ namespace bsmpm
       return !bodies.empty();
     }
 
+    /** Records which stage builds which body: @p names_by_stage[k - 1]
+     * are the names that Stages/Stage k/Construction gives. Refuses an
+     * unknown name, stage 1 and a body built twice. */
+    void
+    build_in_stages(
+      const std::vector<std::vector<std::string>> &names_by_stage);
+
+    /** Whether a stage after the first builds a body. */
+    bool
+    built_later() const;
+
     /**
      * The region the boundary curves refer to ("region edge") and are
      * completed round: the rectangle that the bodies fill together where
      * every body's region is an axis-aligned rectangle and their areas add
      * up to that of their bounding box (layers), else nothing (the curves
      * then lie on the first body's edges, @p first_region, and are not
-     * completed). With one body, @p first_region.
+     * completed). With one body, @p first_region. Only the bodies there
+     * from the start count: those built later have no curves.
      */
     std::optional<BodyRegion>
     filled_rectangle(const BodyRegion &first_region) const;
@@ -94,7 +109,8 @@ namespace bsmpm
      * Whether @p p lies in the region of a body before body @p k (from 1:
      * a further body; the first body's region is @p first_region): a
      * point of the layout on an edge that two bodies share belongs to the
-     * earlier body, so that the material is not counted twice.
+     * earlier body, so that the material is not counted twice. Earlier:
+     * built in an earlier stage, or in the same with a lower number.
      */
     bool
     in_earlier_body(const Point<2>    &p,
@@ -105,10 +121,12 @@ namespace bsmpm
      * Refuses regions that overlap: a point of one body (of @p points,
      * over all processes) inside the region of another, not on its edge,
      * the first body's region being @p first_region. Bodies may meet
-     * along their edges.
+     * along their edges. The bodies that later stages build are checked
+     * by the points their layouts will give them on @p grid.
      */
     void
     check_overlaps(const MaterialPoints &points,
+                   const BackgroundGrid &grid,
                    const BodyRegion     &first_region,
                    const MPI_Comm        communicator) const;
 

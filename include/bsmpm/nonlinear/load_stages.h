@@ -6,6 +6,7 @@
 
 #include <bsmpm/base/load_level.h>
 
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -53,6 +54,8 @@ namespace bsmpm
       /** The polygon whose material the stage removes (Excavation); empty
        * for none. */
       std::vector<Point<2>> excavation;
+      /** The names of the bodies that the stage builds (Bodies). */
+      std::vector<std::string> construction;
     };
 
     /** One load step of the whole run. */
@@ -128,6 +131,15 @@ namespace bsmpm
      * end (displacement control) they go on along its line. */
     LoadLevel
     level(const double tau) const;
+
+    /** The share of its weight that a body built in stage @p k (1: there
+     * from the start, at once) carries at @p tau: 0 before the stage, its
+     * fraction during it, 1 after. */
+    static double
+    weight_share(const double tau, const unsigned int k)
+    {
+      return k == 1 ? 1. : std::clamp(fraction(tau, k), 0., 1.);
+    }
 
     /** The fraction of stage @p k reached at @p tau. */
     static double

@@ -82,8 +82,10 @@ namespace bsmpm
     struct Phases
     {
       /** The material moments of every cell (by active_cell_index()) of
-       * the points as they are now. */
-      std::function<const std::vector<CellMoments> &()> cell_moments;
+       * the points as they are now, for an increment that ends at load
+       * path parameter tau (the weight of a body being built). */
+      std::function<const std::vector<CellMoments> &(const double tau)>
+        cell_moments;
       /** Moves the points by the converged increment of load step
        * @p step, whose prescribed displacements changed over
        * @p increment, and rebuilds the curves. */
@@ -170,9 +172,10 @@ namespace bsmpm
     begin_stage(const unsigned int k, const bool may_yield);
 
     /** The system's constraints and the cells' support qualities for the
-     * points as they are, after @p cuts cuts of the increment. */
+     * points as they are, after @p cuts cuts of the increment, which ends
+     * at load path parameter @p tau. */
     const std::vector<CellMoments> &
-    prepare_increment(const unsigned int cuts);
+    prepare_increment(const unsigned int cuts, const double tau);
 
     /** Newton iterations of a nonlinear material for the assembled load
      * increment @p delta from @p lambda, cut @p cuts times so far; commits

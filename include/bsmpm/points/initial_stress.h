@@ -59,6 +59,9 @@ namespace bsmpm
       const LinearElasticMaterial *material;
       const ConstitutiveModel     *model;
       double                       bottom, top;
+      /** Whether the layer is there from the start (not built by a later
+       * stage: no weight, no stress). */
+      bool present = true;
     };
 
     /**

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -123,15 +124,30 @@ namespace bsmpm
      * (from 1; Property::body, which the points store with the state of a
      * nonlinear model), of @p layout in @p region, except where
      * @p excluded. Their ids follow the earlier bodies' candidates, so
-     * that they too are partition-independent. Throws (naming
-     * @p section) if the region holds no point.
+     * that they too are partition-independent; or, for a body built by a
+     * later stage, from @p first_id, which reserve_ids() kept for it.
+     * Returns how many points it added. Throws (naming @p section) if the
+     * region holds no point.
      */
-    void
+    types::particle_index
     add_body(const MaterialPointLayout                   &layout,
              const BodyRegion                            &region,
              const unsigned int                           body,
              const std::string                           &section,
-             const std::function<bool(const Point<2> &)> &excluded = {});
+             const std::function<bool(const Point<2> &)> &excluded = {},
+             const std::optional<types::particle_index>  &first_id = {});
+
+    /** Keeps the ids of the candidates of @p layout for a body that a
+     * later stage builds (add_body()), so that the ids of the points made
+     * after it do not depend on when it is built. Returns the first. */
+    types::particle_index
+    reserve_ids(const MaterialPointLayout &layout);
+
+    /** Counts the material points again (those with a volume): after the
+     * points were read from a checkpoint, which may hold bodies built or
+     * material excavated since the start. */
+    void
+    count_material_points();
 
     /**
      * The moments of the points' masses (their volumes times the density
@@ -484,13 +500,14 @@ namespace bsmpm
     }
 
     /** Inserts the points of @p layout in @p region with ids from
-     * next_id on, with Property::body = @p body; returns how many were
-     * inserted over all processes. */
+     * @p first_id on, with Property::body = @p body; returns how many
+     * were inserted over all processes. */
     types::particle_index
     insert_body(const MaterialPointLayout                   &layout,
                 const BodyRegion                            &region,
                 const unsigned int                           body,
-                const std::function<bool(const Point<2> &)> &excluded);
+                const std::function<bool(const Point<2> &)> &excluded,
+                const types::particle_index                  first_id);
 
     void
     record_if_tracked(const types::particle_index   id,

@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Bodies built by stages (doc/stages.md, "Construction"): the column of
+prm/column-built-in-lifts.prm, ground at rest (K0) with two lifts of fill
+built on it, in one-dimensional compression. A lift of height H_k and
+density rho_k settles the ground's top by
+
+    rho_k g H_k H / M,   M = E (1 - nu) / ((1 + nu) (1 - 2 nu)),
+
+H the ground's height (the lift adds rho_k g H_k to the vertical stress
+all through the ground below it).
+
+1. The scene: lift 1, built in one step on the ground's unmoved points,
+   to round-off; after lift 2 (on points that lift 1 moved), within
+   --moved-tolerance.
+2. Lift 1's weight grows with its stage: built in 4 steps, the settlement
+   after each is the share s = 1/4 .. 1 of the whole within
+   --moved-tolerance (the points move between the steps), and no point of
+   lift 1 exists in stage 1 (built_points).
+3. The ground's weight by a gravity stage instead of K0: the stage gives
+   the exact settlement of self-weight, rho g H^2 / (2 M); lift 1 then
+   meets points that the weight moved, within --moved-tolerance.
+4. Resumed from the checkpoint between the stages and from one inside the
+   building of lift 2, the run ends where the run left alone ends, to
+   round-off.
+"""
+import argparse
+import pathlib
+import sys
+import tempfile
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2]))
+from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
+
+parser = argparse.ArgumentParser(description=__doc__)
+parser.add_argument("--bsmpm", required=True)
+parser.add_argument("--prm", required=True)
+parser.add_argument("--np", type=int, default=1)
+parser.add_argument("--moved-tolerance", type=float, default=0.01)
+args = parser.parse_args()
+
+g, H = 9.81, 8.0
+E, nu, rho = 1e7, 0.3, 2000.0           # the ground
+lifts = [(1800.0, 2.0), (1800.0, 1.0)]  # (density, height) of lift 1, 2
+M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+settlement = [-r * g * h * H / M for r, h in lifts]
+
+problems = []
+
+
+def check(what, value, expected, tolerance):
+    error = abs(value - expected) / abs(expected)
+    print(f"{what}: {value:.10e} (exact {expected:.10e}, relative error "
+          f"{error:.2e}, tolerance {tolerance:g})")
+    if not error <= tolerance:
+        problems.append(what)
+
+
+def surface(summary):
+    return [s["quantities"]["surface_displacement_y"]
+            for s in summary["steps"]]
+
+
+# 1. The scene as it is.
+u = surface(run(args.bsmpm, args.prm, args.np, ["Output/Interval=0"]))
+check("lift 1 built in one step", u[1], settlement[0], 1e-10)
+check("lift 2 on the moved points", u[2], sum(settlement),
+      args.moved_tolerance)
+
+# 2. Lift 1's weight over four steps.
+summary = run(args.bsmpm, args.prm, args.np,
+              ["Output/Interval=0", "Stages/Number of stages=2", "Body 3/Name=",
+               "Stages/Stage 2/Load steps=4"])
+u = surface(summary)
+for i in range(1, 5):
+    check(f"lift 1 at s = {i}/4", u[i], settlement[0] * i / 4,
+          args.moved_tolerance)
+built = [s["quantities"].get("built_points", 0) for s in summary["steps"]]
+if built[0] != 0 or built[-1] <= 0:
+    problems.append(f"built_points {built}: none in stage 1, lift 1's after")
+
+# 3. The ground's weight by a gravity stage.
+u = surface(run(args.bsmpm, args.prm, args.np,
+                ["Output/Interval=0", "Initial stress/Kind=none",
+                 "Stages/Number of stages=2", "Body 3/Name="]))
+check("the ground's own weight", u[0], -rho * g * H * H / (2 * M), 1e-10)
+check("lift 1 after the weight", u[1] - u[0], settlement[0],
+      3 * args.moved_tolerance)
+
+# 4. Resumed between the stages and inside the building of lift 2.
+with tempfile.TemporaryDirectory() as directory:
+    settings = ["Output/Interval=0", "Output/Checkpoint interval=1",
+                "Stages/Stage 3/Load steps=3"]
+    whole = surface(run(args.bsmpm, args.prm, args.np, settings,
+                        directory))[-1]
+    for checkpoint in ("checkpoint-2", "checkpoint-3"):
+        resumed = run(args.bsmpm, None, args.np, directory=directory,
+                      arguments=["--resume", f"{directory}/{checkpoint}"])
+        check(f"resumed from {checkpoint}", surface(resumed)[-1], whole,
+              1e-12)
+        if resumed["steps"][-1]["quantities"]["built_points"] != 48:
+            problems.append(f"{checkpoint}: built_points")
+
+if problems:
+    sys.exit("FAILED: " + "; ".join(problems))
+print("all checks passed")
