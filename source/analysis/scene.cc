@@ -144,7 +144,6 @@ namespace bsmpm
     points.store_inelastic_state(constitutive_update != nullptr);
     run_summary.nonlinear = constitutive_update != nullptr;
     newton.parse_parameters(prm);
-    newton.accept_stall(contact.enabled());
     collapse_detector.parse_parameters(prm);
     displacement_control.parse_parameters(prm);
     region.parse_parameters(prm);
@@ -281,10 +280,7 @@ namespace bsmpm
       for (unsigned int k = 0; k < bodies.further().size(); ++k)
         {
           const Bodies::Body &body = bodies.further()[k];
-          // A body that a later stage builds keeps its ids for then.
-          if (body.stage > 1)
-            first_ids[k + 1] = points.reserve_ids(body.layout);
-          else
+          if (body.stage == 1)
             points.add_body(body.layout,
                             body.region,
                             k + 1,
@@ -308,6 +304,11 @@ namespace bsmpm
           points.track(tracked);
           boundary_curves.read_initial_positions(points);
         }
+      // A body that a later stage builds keeps its ids for then, after
+      // all others: its layout may change on a resume before that stage.
+      for (unsigned int k = 0; k < bodies.further().size(); ++k)
+        if (bodies.further()[k].stage > 1)
+          first_ids[k + 1] = points.reserve_ids(bodies.further()[k].layout);
       if (initial_stress.enabled())
         {
           const auto layer = [](const LinearElasticMaterial &material,

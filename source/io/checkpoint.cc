@@ -339,8 +339,15 @@ namespace bsmpm
       "--set \"" + path +
       "=...\" with --resume: a resumed run keeps the parameters of its "
       "checkpoint; only those of Output may change, and in a scene in "
-      "stages the number of stages and the stages after the checkpoint's";
-    AssertThrow(path.rfind("Stages/", 0) == 0, ExcMessage(refused + "."));
+      "stages the number of stages, the stages after the checkpoint's and "
+      "the materials and points of the bodies they build";
+    // A further body that a stage builds belongs to that stage.
+    const std::string body_head = "Body ";
+    unsigned int      body      = 0;
+    if (path.rfind(body_head, 0) == 0)
+      body = std::atoi(path.c_str() + body_head.size());
+    AssertThrow(path.rfind("Stages/", 0) == 0 || body >= 2,
+                ExcMessage(refused + "."));
     // The stage that the checkpoint's step belongs to (the parameters
     // are still the checkpoint's): that stage and those before it have
     // run, the ones after it may change.
@@ -359,6 +366,21 @@ namespace bsmpm
     unsigned int      k    = 0;
     if (path.rfind(head, 0) == 0)
       k = std::atoi(path.c_str() + head.size());
+    if (body >= 2)
+      {
+        const std::string section = body_head + std::to_string(body);
+        AssertThrow(path != section + "/Name", ExcMessage(refused + "."));
+        prm.enter_subsection(section);
+        const std::string name = prm.get("Name");
+        prm.leave_subsection();
+        for (unsigned int j = 1; j <= stages.n_stages() && !name.empty(); ++j)
+          for (const std::string &built : stages.stage(j).construction)
+            if (built == name)
+              k = j;
+        AssertThrow(k > 0,
+                    ExcMessage(refused + ": " + section +
+                               " is there from the start."));
+      }
     AssertThrow(k > reached || path == "Stages/Number of stages",
                 ExcMessage(refused + ": the checkpoint (step " +
                            std::to_string(step) + ") is in stage " +

@@ -72,15 +72,6 @@ namespace bsmpm
     void
     parse_parameters(ParameterHandler &prm);
 
-    /** Whether a residual that stalls at a hundred times the tolerance,
-     * with corrections below ten times it, counts as converged: for
-     * contact, whose pieces at zero gap switch on and off (CurveContact). */
-    void
-    accept_stall(const bool yes)
-    {
-      stall_is_convergence = yes;
-    }
-
     /**
      * Iterates from the increment the caller has set. @p reference: the
      * residual of a zero increment, |R(0)|, the scale of the tolerance (a
@@ -186,14 +177,13 @@ namespace bsmpm
     }
 
   private:
-    bool         stall_is_convergence = false;
-    bool         check_tangent        = false;
-    unsigned int max_iterations       = 20;
-    double       tolerance            = 1e-9;
-    unsigned int max_cuts             = 6;
-    double       accepted_stall       = 1e-2;
-    unsigned int line_search          = 5;
-    Predictor    start                = Predictor::automatic;
+    bool         check_tangent  = false;
+    unsigned int max_iterations = 20;
+    double       tolerance      = 1e-9;
+    unsigned int max_cuts       = 6;
+    double       accepted_stall = 1e-2;
+    unsigned int line_search    = 5;
+    Predictor    start          = Predictor::automatic;
   };
 } // namespace bsmpm
 

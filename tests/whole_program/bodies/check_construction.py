@@ -21,7 +21,9 @@ all through the ground below it).
    meets points that the weight moved, within --moved-tolerance.
 4. Resumed from the checkpoint between the stages and from one inside the
    building of lift 2, the run ends where the run left alone ends, to
-   round-off.
+   round-off; resumed between the stages with lift 2's density and
+   points changed, where the run with them from the start ends; a change
+   to lift 1, already built, refused.
 """
 import argparse
 import pathlib
@@ -99,6 +101,26 @@ with tempfile.TemporaryDirectory() as directory:
               1e-12)
         if resumed["steps"][-1]["quantities"]["built_points"] != 48:
             problems.append(f"{checkpoint}: built_points")
+    # Lift 2 is not built yet at the end of stage 2: its material and
+    # points may change on the resume, as if they had been so from the
+    # start; lift 1's may not.
+    lift_2 = ["Body 3/Material/Density=3600",
+              "Body 3/Material points/Points per cell=3"]
+    changed = surface(run(args.bsmpm, args.prm, args.np,
+                          settings + lift_2))[-1]
+    resumed = run(args.bsmpm, None, args.np, directory=directory,
+                  arguments=["--resume", f"{directory}/checkpoint-2",
+                             *[a for s in lift_2 for a in ("--set", s)]])
+    check("resumed with lift 2 changed", surface(resumed)[-1], changed, 1e-12)
+    check("lift 2 twice as heavy", changed - whole,
+          settlement[1], args.moved_tolerance)
+    summary, result = run(args.bsmpm, None, args.np, directory=directory,
+                          arguments=["--resume", f"{directory}/checkpoint-2",
+                                     "--set", "Body 2/Material/Density=1"],
+                          output=True, check=False)
+    if result.returncode == 0 or "is in stage 2" not in result.stderr:
+        problems.append("a change to lift 1 on the resume after it was "
+                        "built was not refused")
 
 if problems:
     sys.exit("FAILED: " + "; ".join(problems))
