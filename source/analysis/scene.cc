@@ -232,6 +232,13 @@ namespace bsmpm
                            "/Construction builds bodies in small strain, for "
                            "now: Material/Kinematics = finite strain is not "
                            "available with it."));
+    // No curve goes round a built body, and contact acts on curves.
+    AssertThrow(!contact.enabled(),
+                ExcMessage("Stages/Stage " + std::to_string(builds) +
+                           "/Construction: a built body has no boundary "
+                           "curve, which the rigid bodies would need to "
+                           "touch it; rigid bodies are not available in a "
+                           "scene that builds, for now."));
     const unsigned int last = stages.n_stages();
     AssertThrow(!displacement_control.enabled() ||
                   stages.stage(last).construction.empty(),
