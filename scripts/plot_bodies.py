@@ -4,7 +4,7 @@ of columns x, y, body, equivalent plastic strain, volume (one row a point;
 written from a points-NNNN.pvtu by pvpython, see doc/bodies.md): left the
 bodies, right the equivalent plastic strain.
 
-Usage: plot_bodies.py POINTS.txt PNG [TITLE]
+Usage: plot_bodies.py POINTS.txt PNG [TITLE [LARGEST PLASTIC STRAIN SHOWN]]
 """
 import sys
 
@@ -23,9 +23,10 @@ for ax in axes:
 axes[0].set_ylabel("y (m)")
 axes[0].scatter(x, y, c=body, s=2, cmap="coolwarm", vmin=0, vmax=1)
 axes[0].set_title("body (red: Body 2)")
-shown = axes[1].scatter(x, y, c=np.minimum(plastic, 0.5), s=2,
+cap = float(sys.argv[4]) if len(sys.argv) > 4 else 0.5
+shown = axes[1].scatter(x, y, c=np.minimum(plastic, cap), s=2,
                         cmap="viridis")
-axes[1].set_title("equivalent plastic strain (to 0.5)")
+axes[1].set_title(f"equivalent plastic strain (to {cap:g})")
 figure.colorbar(shown, ax=axes[1], shrink=0.8)
 if len(sys.argv) > 3:
     figure.suptitle(sys.argv[3])
