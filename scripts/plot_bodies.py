@@ -22,7 +22,7 @@ for ax in axes:
     ax.set_xlabel("x (m)")
 axes[0].set_ylabel("y (m)")
 axes[0].scatter(x, y, c=body, s=2, cmap="coolwarm", vmin=0, vmax=1)
-axes[0].set_title("body (red: Body 2)")
+axes[0].set_title("body (blue: the first, red: the others)")
 cap = float(sys.argv[4]) if len(sys.argv) > 4 else 0.5
 shown = axes[1].scatter(x, y, c=np.minimum(plastic, cap), s=2,
                         cmap="viridis")
