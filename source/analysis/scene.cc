@@ -227,11 +227,6 @@ namespace bsmpm
     unsigned int builds = 2;
     while (stages.stage(builds).construction.empty())
       ++builds;
-    AssertThrow(!finite_strain(),
-                ExcMessage("Stages/Stage " + std::to_string(builds) +
-                           "/Construction builds bodies in small strain, for "
-                           "now: Material/Kinematics = finite strain is not "
-                           "available with it."));
     // No curve goes round a built body, and contact acts on curves.
     AssertThrow(!contact.enabled(),
                 ExcMessage("Stages/Stage " + std::to_string(builds) +

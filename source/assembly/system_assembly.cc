@@ -255,6 +255,13 @@ namespace bsmpm
 
     const Tensor<1, 2> body_force = level.gravity * density() * parts.gravity;
     const bool         has_body_force = body_force.norm() > 0;
+    // In finite strain the points carry their weight with their stress
+    // (ConstitutiveUpdate), so the internal force that Newton's tolerance
+    // is scaled by is the difference of the two, next to nothing for a
+    // ground at rest: the weight itself is kept as that scale.
+    TrilinosWrappers::MPI::Vector weight;
+    if (parts.finite_strain && has_body_force)
+      weight.reinit(system_rhs, false);
 
     constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
     FullMatrix<double>                   cell_matrix(n, n);
@@ -283,12 +290,21 @@ namespace bsmpm
             kernel.add_stiffness(m, cell_matrix);
             kernel.add_internal_force(m, internal);
           }
+        cell->get_dof_indices(dof_indices);
         // In finite strain the points carry the body force on their masses.
-        if (has_body_force && !(parts.finite_strain && points_here))
+        if (has_body_force && parts.finite_strain && points_here)
+          {
+            internal = 0;
+            kernel.add_body_force(mass_moments(m, cell), body_force, internal);
+            constraints.distribute_local_to_global(internal,
+                                                   dof_indices,
+                                                   weight);
+            internal = 0;
+          }
+        else if (has_body_force)
           kernel.add_body_force(mass_moments(m, cell), body_force, cell_rhs);
         cell_rhs -= internal;
 
-        cell->get_dof_indices(dof_indices);
         // Material-point part of the force f^d of a prescribed displacement
         // (eq. 33): the regular stiffness times d^a.
         if (prescribed && !points_here)
@@ -348,6 +364,12 @@ namespace bsmpm
                                          system_rhs);
     system_matrix.compress(VectorOperation::add);
     system_rhs.compress(VectorOperation::add);
+    weight_norm = 0;
+    if (weight.size() > 0)
+      {
+        weight.compress(VectorOperation::add);
+        weight_norm = weight.l2_norm();
+      }
     assembly_moments = nullptr;
   }
 
@@ -634,7 +656,7 @@ namespace bsmpm
       }
     tangent_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
-    internal_force_norm = internal_force.l2_norm();
+    internal_force_norm = std::max(internal_force.l2_norm(), weight_norm);
     newton_residual -= internal_force;
     if (parts.finite_strain)
       newton_residual -= support_force;

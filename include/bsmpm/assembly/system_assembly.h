@@ -245,7 +245,9 @@ namespace bsmpm
     check_loads_finite(const unsigned int step) const;
 
     /** |f_int| of the points at the last newton_system(): the scale of
-     * the stresses that the residual balances. */
+     * the stresses that the residual balances (in finite strain, where the
+     * points' force is net of their weight, at least that of the weight
+     * of the last assemble()). */
     double
     internal_force_size() const
     {
@@ -356,6 +358,8 @@ namespace bsmpm
     unsigned long long            yielding            = 0;
     bool                          contact_symmetric   = true;
     double                        internal_force_norm = 0;
+    /** Finite strain: |the points' weight| at the last assemble(). */
+    double weight_norm = 0;
     /** The supports' bands by cell, for the tangent of nonlinear
      * materials (ConstitutiveUpdate::cell_system()). */
     ConstitutiveUpdate::SupportBands support_bands;
