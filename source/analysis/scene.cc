@@ -852,6 +852,8 @@ namespace bsmpm
 
     if (constitutive_update)
       run_summary.quantities["yielded_points"] = record.n_yielded;
+    if (bodies.several())
+      bodies.record(points, communicator, run_summary.quantities);
     contact.record(run_summary.quantities);
     boundary_curves.record_point_changes(run_summary.quantities);
     collapse_detector.record(run_summary.quantities);

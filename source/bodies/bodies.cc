@@ -2,6 +2,7 @@
 #include <bsmpm/bodies/bodies.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace bsmpm
 {
@@ -282,5 +283,42 @@ namespace bsmpm
                 ExcMessage(sections[found / n] + " and " + sections[found % n] +
                            " overlap: bodies may meet along their edges but "
                            "not share material."));
+  }
+
+
+
+  void
+  Bodies::record(const MaterialPoints          &points,
+                 const MPI_Comm                 communicator,
+                 std::map<std::string, double> &quantities) const
+  {
+    using Property       = MaterialPoints::Property;
+    const unsigned int n = bodies.size() + 1;
+    // Per body: points, volume, yielded points (sums); the largest
+    // displacement (maximum).
+    std::vector<double> sums(3 * n), largest(n);
+    for (const auto &particle : points.particle_handler())
+      {
+        const auto props = particle.get_properties();
+        if (props[Property::volume] == 0.)
+          continue;
+        const unsigned int b = static_cast<unsigned int>(props[Property::body]);
+        sums[3 * b] += 1;
+        sums[3 * b + 1] += props[Property::volume];
+        sums[3 * b + 2] += props[Property::yielded] > 0 ? 1 : 0;
+        largest[b] = std::max(largest[b],
+                              std::hypot(props[Property::displacement],
+                                         props[Property::displacement + 1]));
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+    Utilities::MPI::max(largest, communicator, largest);
+    for (unsigned int b = 0; b < n; ++b)
+      {
+        const std::string key      = "body_" + std::to_string(b + 1) + "_";
+        quantities[key + "points"] = sums[3 * b];
+        quantities[key + "volume"] = sums[3 * b + 1];
+        quantities[key + "yielded_points"]   = sums[3 * b + 2];
+        quantities[key + "max_displacement"] = largest[b];
+      }
   }
 } // namespace bsmpm

@@ -9,6 +9,7 @@
 #include <bsmpm/points/material_point_layout.h>
 #include <bsmpm/points/material_points.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -129,6 +130,18 @@ namespace bsmpm
                    const BackgroundGrid &grid,
                    const BodyRegion     &first_region,
                    const MPI_Comm        communicator) const;
+
+    /**
+     * Adds to @p quantities, for every body k (1 the first), its number
+     * of points "body_k_points", their volume "body_k_volume", their
+     * largest displacement "body_k_max_displacement" and how many yield
+     * "body_k_yielded_points" (0 for a body not built yet). Collective
+     * over @p communicator.
+     */
+    void
+    record(const MaterialPoints          &points,
+           const MPI_Comm                 communicator,
+           std::map<std::string, double> &quantities) const;
 
   private:
     std::vector<Body> bodies;

@@ -11,7 +11,8 @@ all through the ground below it).
 
 1. The scene: lift 1, built in one step on the ground's unmoved points,
    to round-off; after lift 2 (on points that lift 1 moved), within
-   --moved-tolerance.
+   --moved-tolerance; every body's points and volume in summary.json
+   (none before it is built).
 2. Lift 1's weight grows with its stage: built in 4 steps, the settlement
    after each is the share s = 1/4 .. 1 of the whole within
    --moved-tolerance (the points move between the steps), and no point of
@@ -68,11 +69,23 @@ def surface(summary):
 
 
 def scene_as_it_is():
-    """1. The scene as it is."""
-    u = surface(run(args.bsmpm, args.prm, args.np, ["Output/Interval=0"]))
+    """1. The scene as it is; each body's points and volume in
+    summary.json, none before it is built."""
+    summary = run(args.bsmpm, args.prm, args.np, ["Output/Interval=0"])
+    u = surface(summary)
     check("lift 1 built in one step", u[1], settlement[0], 1e-10)
     check("lift 2 on the moved points", u[2], sum(settlement),
           args.moved_tolerance)
+    expected = {1: (128, 8.0), 2: (32, 2.0), 3: (16, 1.0)}
+    for step, built in ((0, (1,)), (1, (1, 2)), (2, (1, 2, 3))):
+        q = summary["steps"][step]["quantities"]
+        for body, (points, volume) in expected.items():
+            found = (q[f"body_{body}_points"], q[f"body_{body}_volume"])
+            wanted = (points, volume) if body in built else (0, 0)
+            if abs(found[0] - wanted[0]) > 0 or \
+                    abs(found[1] - wanted[1]) > 1e-12 * volume:
+                problems.append(f"step {step + 1}: body {body} has "
+                                f"{found}, not {wanted}")
 
 
 def weight_over_the_stage():
