@@ -263,9 +263,9 @@ namespace bsmpm
     if (parts.finite_strain && has_body_force)
       weight.reinit(system_rhs, false);
 
-    constexpr unsigned int               n = Q1CellKernel::dofs_per_cell;
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_rhs(n), internal(n), da(n);
+    constexpr unsigned int n = Q1CellKernel::dofs_per_cell;
+    FullMatrix<double>     cell_matrix(n, n);
+    Vector<double>         cell_rhs(n), internal(n), da(n), cell_weight(n);
     std::vector<types::global_dof_index> dof_indices(n);
 
     for (const auto &cell : grid.dof_handler().active_cell_iterators())
@@ -294,12 +294,13 @@ namespace bsmpm
         // In finite strain the points carry the body force on their masses.
         if (has_body_force && parts.finite_strain && points_here)
           {
-            internal = 0;
-            kernel.add_body_force(mass_moments(m, cell), body_force, internal);
-            constraints.distribute_local_to_global(internal,
+            cell_weight = 0;
+            kernel.add_body_force(mass_moments(m, cell),
+                                  body_force,
+                                  cell_weight);
+            constraints.distribute_local_to_global(cell_weight,
                                                    dof_indices,
                                                    weight);
-            internal = 0;
           }
         else if (has_body_force)
           kernel.add_body_force(mass_moments(m, cell), body_force, cell_rhs);

@@ -128,16 +128,19 @@ namespace bsmpm
             std::find_if(bodies.begin(), bodies.end(), [&](const Body &b) {
               return b.name == name;
             });
-          std::string names;
-          for (const Body &b : bodies)
-            names += (names.empty() ? "" : ", ") + b.name;
-          AssertThrow(body != bodies.end(),
-                      ExcMessage(where +
-                                 ": no further body has that name (they "
-                                 "are: " +
-                                 (names.empty() ? "none" : names) +
-                                 "; the first body is there from the "
-                                 "start)."));
+          if (body == bodies.end())
+            {
+              std::string names;
+              for (const Body &b : bodies)
+                names += (names.empty() ? "" : ", ") + b.name;
+              AssertThrow(false,
+                          ExcMessage(where +
+                                     ": no further body has that name (they "
+                                     "are: " +
+                                     (names.empty() ? "none" : names) +
+                                     "; the first body is there from the "
+                                     "start)."));
+            }
           AssertThrow(k > 1,
                       ExcMessage(where +
                                  ": stage 1 starts the analysis, with every "

@@ -85,7 +85,7 @@ namespace bsmpm
           "",
           Patterns::Anything(),
           "Names of further bodies ('Body k/Name', separated by commas) "
-          "that the stage builds (small strain): their points appear at "
+          "that the stage builds: their points appear at "
           "the stage's start where their regions say, without stress, and "
           "their weight grows with the stage's load steps. Empty: none. A "
           "body that no stage builds is there from the start.");

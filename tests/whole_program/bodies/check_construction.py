@@ -115,13 +115,21 @@ def after_a_gravity_stage():
           3 * args.moved_tolerance)
 
 
+# Checkpoints after every step, lift 2 built over three steps.
+CHECKPOINTED = ["Output/Interval=0", "Output/Checkpoint interval=1",
+                "Stages/Stage 3/Load steps=3"]
+
+
+def checkpointed_run(directory):
+    """The settlement at the end of the checkpointed run in directory."""
+    return surface(run(args.bsmpm, args.prm, args.np, CHECKPOINTED,
+                       directory))[-1]
+
+
 def resumed():
     """4. Resumed between the stages and inside the building of lift 2."""
     with tempfile.TemporaryDirectory() as directory:
-        settings = ["Output/Interval=0", "Output/Checkpoint interval=1",
-                    "Stages/Stage 3/Load steps=3"]
-        whole = surface(run(args.bsmpm, args.prm, args.np, settings,
-                            directory))[-1]
+        whole = checkpointed_run(directory)
         for checkpoint in ("checkpoint-2", "checkpoint-3"):
             summary = run(args.bsmpm, None, args.np, directory=directory,
                           arguments=["--resume", f"{directory}/{checkpoint}"])
@@ -134,17 +142,14 @@ def resumed():
 def changed_on_resume():
     """6. A body not built yet changes on the resume, one built may not."""
     with tempfile.TemporaryDirectory() as directory:
-        settings = ["Output/Interval=0", "Output/Checkpoint interval=1",
-                    "Stages/Stage 3/Load steps=3"]
-        whole = surface(run(args.bsmpm, args.prm, args.np, settings,
-                            directory))[-1]
+        whole = checkpointed_run(directory)
         # Lift 2 is not built yet at the end of stage 2: its material and
         # points may change on the resume, as if they had been so from the
         # start; lift 1's may not.
         lift_2 = ["Body 3/Material/Density=3600",
                   "Body 3/Material points/Points per cell=3"]
         changed = surface(run(args.bsmpm, args.prm, args.np,
-                              settings + lift_2))[-1]
+                              CHECKPOINTED + lift_2))[-1]
         summary = run(args.bsmpm, None, args.np, directory=directory,
                       arguments=["--resume", f"{directory}/checkpoint-2",
                                  *[a for s in lift_2 for a in ("--set", s)]])
