@@ -637,7 +637,7 @@ namespace bsmpm
 
 
   void
-  Scene::begin_stage(const unsigned int k)
+  Scene::begin_stage(const unsigned int k, const unsigned int step)
   {
     if (k > 1)
       load_stepper->begin_stage(k);
@@ -664,18 +664,33 @@ namespace bsmpm
       {
         const std::string where =
           "Stages/Stage " + std::to_string(k) + "/Excavation";
-        AssertThrow(!finite_strain(),
-                    ExcMessage(where + ": excavation is for small strain."));
-        std::vector<Point<2>> tracked;
+        // The tracked points that must keep away from the region: the
+        // probe's, and those of curves that do not follow the cut.
+        std::vector<Point<2>> tracked, kept;
         std::vector<Voigt>    stresses;
         points.tracked_states(tracked, stresses);
+        if (probe.enabled())
+          kept.push_back(tracked[probe.tracked_slot()]);
+        const auto &curves = boundary_curves.get_curves();
+        for (unsigned int c = 0; c < curves.size(); ++c)
+          if (contact.enabled() || !boundary_curves.follows_excavation(c))
+            for (const unsigned int slot : curves[c].tracked_slots)
+              kept.push_back(tracked[slot]);
         const auto removed = excavation.remove(stages.stage(k).excavation,
                                                points,
                                                grid,
                                                assembly->kernel(),
                                                before.gravity * gravity,
-                                               tracked,
+                                               finite_strain(),
+                                               kept,
                                                where);
+        // The face joins the closed curves round the body.
+        if (!contact.enabled() &&
+            boundary_curves.excavate(stages.stage(k).excavation,
+                                     points,
+                                     grid,
+                                     where))
+          update_curves(step);
         run_summary.quantities["excavated_points"] += removed;
         pcout << "       " << removed << " points excavated\n";
       }
@@ -758,7 +773,7 @@ namespace bsmpm
           {
             const LoadStages::Step path = stages.step(step);
             if (path.first_of_stage)
-              begin_stage(path.stage);
+              begin_stage(path.stage, step);
             RunSummary::Step record;
             record.number = step;
             record.stage  = path.stage;

@@ -16,7 +16,8 @@ namespace bsmpm
                      const BackgroundGrid        &grid,
                      const Q1CellKernel          &kernel,
                      const Tensor<1, 2>          &gravity,
-                     const std::vector<Point<2>> &curve_points,
+                     const bool                   finite_strain,
+                     const std::vector<Point<2>> &kept_points,
                      const std::string           &where)
   {
     AssertThrow(polygon.size() >= 3,
@@ -37,16 +38,16 @@ namespace bsmpm
         }
       return d;
     };
-    for (const Point<2> &x : curve_points)
+    for (const Point<2> &x : kept_points)
       if (polygon_contains(polygon, x) || distance(x) < h)
         {
           std::ostringstream message;
           message << where << ": the excavated region reaches the "
                   << "tracked point (" << x
-                  << ") of a boundary curve or the probe. The face of a cut "
-                     "does not become a boundary curve yet: keep the curves "
-                     "and the probe more than a cell away from the region "
-                     "(the cut's face is then the edge of its points).";
+                  << ") of a boundary curve or the probe. Only a closed "
+                     "curve of tracking points without rigid bodies in the "
+                     "scene follows the cut's face: keep other curves and "
+                     "the probe more than a cell away from the region.";
           AssertThrow(false, ExcMessage(message.str()));
         }
 
@@ -54,7 +55,8 @@ namespace bsmpm
     const types::particle_index n = points.remove_points(
       [&](const Point<2> &x) { return polygon_contains(polygon, x); },
       moments,
-      masses);
+      masses,
+      finite_strain);
 
     forces.clear();
     Vector<double> internal(8), external(8);

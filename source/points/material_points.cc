@@ -414,7 +414,8 @@ namespace bsmpm
   MaterialPoints::remove_points(
     const std::function<bool(const Point<2> &)> &inside,
     std::vector<CellMoments>                    &moments,
-    std::vector<CellMoments>                    &masses)
+    std::vector<CellMoments>                    &masses,
+    const bool                                   finite_strain)
   {
     moments.assign(grid.triangulation().n_active_cells(), CellMoments());
     masses.assign(grid.triangulation().n_active_cells(), CellMoments());
@@ -433,9 +434,12 @@ namespace bsmpm
               Voigt({properties[Property::stress],
                      properties[Property::stress + 1],
                      properties[Property::stress + 2]}));
+            // In finite strain the mass is that of the volume at the
+            // start, V / det F (ConstitutiveUpdate's body force).
             masses[cell->active_cell_index()].add(
               particle->get_reference_location(),
-              density(properties) * properties[Property::volume],
+              density(properties) * properties[Property::volume] /
+                (finite_strain ? properties[Property::det_F] : 1.),
               Voigt());
             removed.push_back(particle);
           }

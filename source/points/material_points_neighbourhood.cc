@@ -218,3 +218,73 @@ namespace bsmpm
     return kernel.gradient(d, where);
   }
 } // namespace bsmpm
+
+
+
+namespace bsmpm
+{
+  std::vector<std::vector<double>>
+  MaterialPoints::mean_properties_near(const std::vector<Point<2>> &positions,
+                                       const double radius) const
+  {
+    // Per position: the volume-weighted sums of the properties of the
+    // nearby points this process owns, then their volume; summed over the
+    // processes, each in the order of the points' ids (as
+    // exchange_neighbourhood_state()), so that the result does not depend
+    // on the order in which points arrived in their cells.
+    const unsigned int  W = n_point_properties + 1;
+    std::vector<double> sums(positions.size() * W, 0.);
+    std::vector<std::pair<types::particle_index, ArrayView<const double>>>
+      near;
+    // The cells that the square of half-width radius round x overlaps.
+    const auto cells_round = [&](const Point<2> &x, const double sign) {
+      Point<2> corner = x + sign * radius * Tensor<1, 2>({1., 1.});
+      for (unsigned int d = 0; d < 2; ++d)
+        corner[d] = std::clamp(corner[d], grid.lower_left()[d],
+                               grid.upper_right()[d]);
+      return grid.cell_index(corner);
+    };
+    for (unsigned int i = 0; i < positions.size(); ++i)
+      {
+        const Point<2> &x = positions[i];
+        near.clear();
+        const auto first = cells_round(x, -1.), last = cells_round(x, 1.);
+        for (unsigned int j = first[1]; j <= last[1]; ++j)
+          for (unsigned int k = first[0]; k <= last[0]; ++k)
+            {
+              const auto cell = grid.locally_owned_cell({{k, j}});
+              if (cell == grid.dof_handler().end())
+                continue;
+              for (const auto &particle : particles.particles_in_cell(cell))
+                if (particle.get_properties()[Property::volume] > 0 &&
+                    particle.get_location().distance(x) <= radius)
+                  near.emplace_back(particle.get_id(),
+                                    particle.get_properties());
+            }
+        std::sort(near.begin(), near.end(), [](const auto &a, const auto &b) {
+          return a.first < b.first;
+        });
+        for (const auto &[id, props] : near)
+          {
+            const double V = props[Property::volume];
+            for (unsigned int p = 0; p + 1 < W; ++p)
+              sums[i * W + p] += V * props[p];
+            sums[i * W + W - 1] += V;
+          }
+      }
+    Utilities::MPI::sum(sums, grid.mpi_communicator(), sums);
+    std::vector<std::vector<double>> means(positions.size());
+    for (unsigned int i = 0; i < positions.size(); ++i)
+      {
+        const double V = sums[i * W + W - 1];
+        if (!(V > 0))
+          continue;
+        means[i].resize(W - 1);
+        for (unsigned int p = 0; p + 1 < W; ++p)
+          means[i][p] = sums[i * W + p] / V;
+        if (means[i].size() > Property::body)
+          means[i][Property::body] = std::round(means[i][Property::body]);
+      }
+    return means;
+  }
+} // namespace bsmpm

@@ -154,10 +154,11 @@ namespace bsmpm
     void
     write_output(const unsigned int step, const double load_factor);
 
-    /** Before the first step of stage @p k: its line in the log, and what
-     * the stage restarts (LoadStages::Stage). */
+    /** Before load step @p step, the first of stage @p k: its line in the
+     * log, and what the stage restarts, removes or builds
+     * (LoadStages::Stage). */
     void
-    begin_stage(const unsigned int k);
+    begin_stage(const unsigned int k, const unsigned int step);
     void
     evaluate_errors();
     /** Several bodies: where the cut-cell quadrature corrected a cell's

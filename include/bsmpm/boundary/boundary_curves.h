@@ -210,6 +210,33 @@ namespace bsmpm
     void
     check_touching(const double h) const;
 
+    /**
+     * The face that the excavation of the region inside @p polygon leaves
+     * (doc/stages.md, "Excavation"): in every closed curve of tracking
+     * points that the region reaches (follows_excavation()), the stretch
+     * of points inside it gives way to the region's edge from where the
+     * spline leaves it to where it enters it again, through the body:
+     * free, with points about as far apart as the curve's, its corners
+     * and the crossings as corners, each point with the state and total
+     * displacement of the material within a cell of it. Conditions keep
+     * their stretch outside the region. Refuses (naming @p where) a region
+     * that holds no point of a closed curve but reaches into the body (a
+     * cavity), that crosses a curve more than once in and out, or whose
+     * face a condition would cover. Call after the material points inside
+     * the region are removed, then update(). Returns whether a curve
+     * changed. Collective.
+     */
+    bool
+    excavate(const std::vector<Point<2>> &polygon,
+             MaterialPoints              &points,
+             const BackgroundGrid        &grid,
+             const std::string           &where);
+
+    /** Whether curve @p c follows an excavation (excavate()): a closed
+     * curve of tracking points. */
+    bool
+    follows_excavation(const unsigned int c) const;
+
     /** Whether any curve's points have changed in the run. */
     bool
     points_changed() const

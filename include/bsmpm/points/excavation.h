@@ -36,8 +36,10 @@ namespace bsmpm
    * stand collapses part way (the collapse detector's limit load factor is
    * the fraction released).
    *
-   * Small strain: the forces are taken from the points' cell moments (the
-   * Q1 kernel integrates B^T sigma over them exactly).
+   * The forces are taken from the removed points' cell moments (the Q1
+   * kernel integrates B^T sigma over them exactly): their volumes and
+   * Cauchy stresses as they are, and in finite strain their masses from
+   * the volumes at the start.
    */
   class Excavation
   {
@@ -46,11 +48,13 @@ namespace bsmpm
      * Removes the material points inside @p polygon from @p points and
      * keeps the forces they exerted on the rest under the gravity
      * @p gravity (times its load multiplier; the points' masses from their
-     * bodies' densities). @p curve_points are the positions of
-     * the tracked points (boundary curves, probe): the cut's face does not
-     * yet become a curve, so a polygon that holds one of them, or comes
-     * within a cell of one, is refused (the message names @p where).
-     * Returns how many points were removed.
+     * bodies' densities; @p finite_strain: ConstitutiveUpdate's masses).
+     * @p kept_points are the positions of the tracked points whose curve
+     * does not follow the cut (BoundaryCurves::excavate(): open curves,
+     * curves of material points, curves in contact) and of the probe: a
+     * polygon that holds one of them, or comes within a cell of one, is
+     * refused (the message names @p where). Returns how many points were
+     * removed.
      */
     types::particle_index
     remove(const std::vector<Point<2>> &polygon,
@@ -58,7 +62,8 @@ namespace bsmpm
            const BackgroundGrid        &grid,
            const Q1CellKernel          &kernel,
            const Tensor<1, 2>          &gravity,
-           const std::vector<Point<2>> &curve_points,
+           const bool                   finite_strain,
+           const std::vector<Point<2>> &kept_points,
            const std::string           &where);
 
     /** Whether a removal left forces to release. */

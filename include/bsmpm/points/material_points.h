@@ -286,13 +286,15 @@ namespace bsmpm
      * at their position, after adding their volumes and stresses to
      * @p moments and their masses to @p masses (indexed by
      * active_cell_index(), as compute_cell_moments() and
-     * compute_mass_moments()) (Excavation). Returns how many were removed
-     * on all processes.
+     * compute_mass_moments(); in @p finite_strain the masses of the
+     * volumes at the start, V / det F) (Excavation). Returns how many were
+     * removed on all processes.
      */
     types::particle_index
     remove_points(const std::function<bool(const Point<2> &)> &inside,
                   std::vector<CellMoments>                    &moments,
-                  std::vector<CellMoments>                    &masses);
+                  std::vector<CellMoments>                    &masses,
+                  const bool finite_strain = false);
 
     /** Sets the total displacements of all points to zero (a stage that
      * measures its own displacements); positions, strains, stresses and
@@ -386,6 +388,17 @@ namespace bsmpm
     std::vector<double>
     neighbourhood_mean_properties(
       const DoFHandler<2>::active_cell_iterator &cell) const;
+
+    /**
+     * For every one of @p positions (the same list on every process): the
+     * mean properties of the points with volume within @p radius of it,
+     * weighted by their volumes, over all processes (collective); empty
+     * where no such point is. The state of the material next to a
+     * boundary point made where there was none (an excavation's face).
+     */
+    std::vector<std::vector<double>>
+    mean_properties_near(const std::vector<Point<2>> &positions,
+                         const double                 radius) const;
 
     /**
      * Sums the volume-weighted properties of the points of every owned

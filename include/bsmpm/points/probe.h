@@ -42,6 +42,13 @@ namespace bsmpm
       return has_point;
     }
 
+    /** Its slot in MaterialPoints' tracked list (add_to()). */
+    unsigned int
+    tracked_slot() const
+    {
+      return slot;
+    }
+
     /** Adds the probe to @p points as a tracking point and its id to
      * @p tracked, the list that MaterialPoints::track() is then given. */
     void

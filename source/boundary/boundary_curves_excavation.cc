@@ -1,0 +1,401 @@
+#include <bsmpm/boundary/boundary_curves.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+// BoundaryCurves, part 4: the face that an excavation leaves becomes part
+// of the closed curves round the body (doc/stages.md, "Excavation").
+
+namespace bsmpm
+{
+  namespace
+  {
+    /** Distance from @p x to the boundary of the closed polygon @p p. */
+    double
+    distance_to_edges(const std::vector<Point<2>> &p, const Point<2> &x)
+    {
+      double d = std::numeric_limits<double>::infinity();
+      for (unsigned int i = 0; i < p.size(); ++i)
+        {
+          const Point<2>    &a = p[i], &b = p[(i + 1) % p.size()];
+          const Tensor<1, 2> e = b - a;
+          const double       t =
+            std::clamp((x - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
+          d = std::min(d, x.distance(a + t * e));
+        }
+      return d;
+    }
+
+    /** The arc length along the boundary of polygon @p p (from vertex 0,
+     * through vertices 1, 2, ...) of the point of it nearest to @p x. */
+    double
+    arc_position(const std::vector<Point<2>> &p, const Point<2> &x)
+    {
+      double best = std::numeric_limits<double>::infinity(), position = 0;
+      double start = 0;
+      for (unsigned int i = 0; i < p.size(); ++i)
+        {
+          const Point<2>    &a = p[i], &b = p[(i + 1) % p.size()];
+          const Tensor<1, 2> e = b - a;
+          const double       t =
+            std::clamp((x - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
+          const double d = x.distance(a + t * e);
+          if (d < best)
+            {
+              best     = d;
+              position = start + t * e.norm();
+            }
+          start += e.norm();
+        }
+      return position;
+    }
+
+    /** The path along the boundary of polygon @p p from @p x to @p y (both
+     * on it): its vertices, @p x and @p y included; forward runs through
+     * vertices 1, 2, ..., backward the other way. */
+    std::vector<Point<2>>
+    polygon_path(const std::vector<Point<2>> &p,
+                 const Point<2>              &x,
+                 const Point<2>              &y,
+                 const bool                   forward,
+                 const double                 tolerance)
+    {
+      const unsigned int  m = p.size();
+      std::vector<double> vertex_position(m + 1, 0.);
+      for (unsigned int i = 0; i < m; ++i)
+        vertex_position[i + 1] = vertex_position[i] + p[i].distance(p[(i + 1) % m]);
+      const double perimeter = vertex_position[m];
+      const double sx = arc_position(p, x), sy = arc_position(p, y);
+      // Arc lengths from x in the direction of travel.
+      const auto ahead = [&](const double s) {
+        const double d = forward ? s - sx : sx - s;
+        return d - perimeter * std::floor(d / perimeter);
+      };
+      const double          end = ahead(sy);
+      std::vector<std::pair<double, Point<2>>> vertices;
+      for (unsigned int i = 0; i < m; ++i)
+        {
+          const double a = ahead(vertex_position[i]);
+          if (a > tolerance && a < end - tolerance)
+            vertices.emplace_back(a, p[i]);
+        }
+      std::sort(vertices.begin(), vertices.end(), [](const auto &u, const auto &v) {
+        return u.first < v.first;
+      });
+      std::vector<Point<2>> path = {x};
+      for (const auto &v : vertices)
+        path.push_back(v.second);
+      path.push_back(y);
+      return path;
+    }
+  } // namespace
+
+
+
+  bool
+  BoundaryCurves::follows_excavation(const unsigned int c) const
+  {
+    return curves[c].closed && !sources[c].through_material_points();
+  }
+
+
+
+  bool
+  BoundaryCurves::excavate(const std::vector<Point<2>> &polygon,
+                           MaterialPoints              &points,
+                           const BackgroundGrid        &grid,
+                           const std::string           &where)
+  {
+    const double h         = grid.min_cell_size();
+    const double tolerance = 1e-9 * h;
+    // A point of a curve within a tenth of a cell of the region's edge
+    // counts as inside: where a lift's region ends on the face that the
+    // lift before left, that face's points, moved a little either way
+    // since, give way to the new face.
+    const double band   = 0.1 * h;
+    const auto   inside = [&](const Point<2> &x) {
+      return polygon_contains(polygon, x) ||
+             distance_to_edges(polygon, x) < band;
+    };
+    // The point of the region's edge nearest to @p x.
+    const auto onto_edge = [&](const Point<2> &x) {
+      Point<2> nearest = x;
+      double   d       = std::numeric_limits<double>::infinity();
+      for (unsigned int i = 0; i < polygon.size(); ++i)
+        {
+          const Point<2>    &p0 = polygon[i], &p1 = polygon[(i + 1) % polygon.size()];
+          const Tensor<1, 2> e  = p1 - p0;
+          const double       t  = std::clamp((x - p0) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
+          if (x.distance(p0 + t * e) < d)
+            {
+              d       = x.distance(p0 + t * e);
+              nearest = p0 + t * e;
+            }
+        }
+      return nearest;
+    };
+    bool changed = false;
+    n_inserted.resize(curves.size(), 0);
+    n_removed.resize(curves.size(), 0);
+    for (unsigned int c = 0; c < curves.size(); ++c)
+      {
+        if (!follows_excavation(c))
+          continue;
+        BoundaryCurve     &curve = curves[c];
+        const std::string  name  = "Boundary curves/" + curve.name;
+        const unsigned int n     = curve.positions.size();
+        std::vector<bool>  in(n);
+        unsigned int       n_in = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          n_in += (in[k] = inside(curve.positions[k]));
+        const auto refuse = [&](const std::string &why) {
+          AssertThrow(false,
+                      ExcMessage(where + ": the excavated region " + why +
+                                 " (" + name + ")."));
+        };
+        if (n_in == 0)
+          {
+            // A region that reaches into the body between two points of
+            // the curve, or lies wholly inside it (a cavity), would leave a
+            // face that is no curve.
+            for (const Point<2> &v : polygon)
+              if (polygon_contains(curve.positions, v) &&
+                  distance_to_edges(curve.positions, v) > tolerance)
+                refuse("has a corner inside the body but holds no point of "
+                       "the curve round it: a cavity, or a notch narrower "
+                       "than the curve's points are apart, cannot be "
+                       "excavated; let the region take in a stretch of the "
+                       "body's boundary");
+            continue;
+          }
+        if (n_in == n)
+          refuse("holds the whole curve round the body");
+        // The stretch of the chain inside the region: r0 .. r1 (cyclic),
+        // between the points a and b outside it.
+        unsigned int r0 = 0;
+        while (!(in[r0] && !in[(r0 + n - 1) % n]))
+          ++r0;
+        unsigned int length = 0;
+        while (in[(r0 + length) % n])
+          ++length;
+        if (length != n_in)
+          refuse("crosses the curve round the body more than once in and "
+                 "out; an excavation takes one stretch of its boundary");
+        const unsigned int a = (r0 + n - 1) % n, b = (r0 + length) % n;
+
+        // Where the spline crosses the region's edge, by bisection on the
+        // segments a -> a + 1 and b - 1 -> b (onto the edge from the band
+        // round it).
+        const auto crossing = [&](const unsigned int segment,
+                                  const bool         leaving_at_start) {
+          auto range = curve.spline->segment_parameters(segment);
+          for (unsigned int i = 0; i < 60; ++i)
+            {
+              const double u = (range[0] + range[1]) / 2;
+              (inside(curve.spline->value(u)) == leaving_at_start ?
+                 range[0] :
+                 range[1]) = u;
+            }
+          return onto_edge(curve.spline->value((range[0] + range[1]) / 2));
+        };
+        const Point<2> x1 = crossing(a, false);
+        const Point<2> x2 = crossing((b + n - 1) % n, true);
+
+        // The face: the region's edge from x1 to x2 through the body, the
+        // way round whose legs run inside it: none of their middles
+        // outside the body, one at least inside it (beyond the band round
+        // its boundary, where an edge of the region may run along it).
+        const auto runs_inside = [&](const std::vector<Point<2>> &path) {
+          bool some_inside = false;
+          for (unsigned int i = 0; i + 1 < path.size(); ++i)
+            {
+              const Point<2> middle = path[i] + 0.5 * (path[i + 1] - path[i]);
+              if (distance_to_edges(curve.positions, middle) <= band)
+                continue;
+              if (!polygon_contains(curve.positions, middle))
+                return false;
+              some_inside = true;
+            }
+          return some_inside;
+        };
+        const std::vector<Point<2>> forward =
+                                      polygon_path(polygon, x1, x2, true, tolerance),
+                                    backward =
+                                      polygon_path(polygon, x1, x2, false, tolerance);
+        const bool forward_inside = runs_inside(forward),
+                   backward_inside = runs_inside(backward);
+        if (forward_inside == backward_inside)
+          refuse("has an edge that leaves and enters the body again between "
+                 "its crossings of the curve round it");
+        const std::vector<Point<2>> &path = forward_inside ? forward : backward;
+
+        // The face's points, its corners among them, about as far apart as
+        // the curve's points are (at most a cell); an end next to the
+        // chain's point outside is that point.
+        double perimeter = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          perimeter += curve.positions[k].distance(curve.positions[(k + 1) % n]);
+        const double spacing = std::min(perimeter / n, h);
+        const bool   first_is_a = x1.distance(curve.positions[a]) < 0.2 * spacing;
+        const bool   last_is_b  = x2.distance(curve.positions[b]) < 0.2 * spacing;
+        std::vector<Point<2>>     face;
+        std::vector<unsigned int> face_corners; // in face
+        for (unsigned int leg = 0; leg + 1 < path.size(); ++leg)
+          {
+            if (leg > 0 || !first_is_a)
+              {
+                face_corners.push_back(face.size());
+                face.push_back(path[leg]);
+              }
+            const unsigned int pieces = std::max(
+              1u,
+              static_cast<unsigned int>(
+                std::round(path[leg].distance(path[leg + 1]) / spacing)));
+            for (unsigned int i = 1; i < pieces; ++i)
+              face.push_back(path[leg] +
+                             (double(i) / pieces) * (path[leg + 1] - path[leg]));
+          }
+        if (!last_is_b)
+          {
+            face_corners.push_back(face.size());
+            face.push_back(path.back());
+          }
+        // A crossing on a face of the grid (a body held by it) may lie
+        // beyond it by round-off.
+        for (Point<2> &x : face)
+          x = grid.pulled_onto(x, 0.1);
+
+        // The material's state along the face: that of the points within a
+        // cell of it; its total displacement, that of the material there.
+        const auto means = points.mean_properties_near(face, h);
+        std::vector<std::vector<double>> properties;
+        std::vector<Point<2>>            initial_positions;
+        using P = MaterialPoints::Property;
+        for (unsigned int i = 0; i < face.size(); ++i)
+          {
+            std::ostringstream at;
+            at << "(" << face[i] << ")";
+            AssertThrow(!means[i].empty(),
+                        ExcMessage(where + ": no material lies within a cell "
+                                           "of the excavation's face at " +
+                                   at.str() + " (" + name + ")."));
+            std::vector<double> props = means[i];
+            const Point<2> X(face[i][0] - props[P::displacement],
+                             face[i][1] - props[P::displacement + 1]);
+            props[P::initial_position]     = X[0];
+            props[P::initial_position + 1] = X[1];
+            properties.push_back(props);
+            initial_positions.push_back(X);
+          }
+
+        // The new chain: the points outside the region in their order, the
+        // face where the stretch inside was.
+        const unsigned int        invalid = numbers::invalid_unsigned_int;
+        std::vector<unsigned int> new_index(n, invalid);
+        std::vector<int>          origin; // old index, or -1 - face index
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            if (k == r0)
+              for (unsigned int i = 0; i < face.size(); ++i)
+                origin.push_back(-1 - static_cast<int>(i));
+            if (!in[k])
+              {
+                new_index[k] = origin.size();
+                origin.push_back(k);
+              }
+          }
+        const unsigned int n_new = origin.size();
+        // The face's first and last points in the new chain (a or b where
+        // the face starts or ends there).
+        const unsigned int face_start =
+          first_is_a ? new_index[a] : (new_index[a] + 1) % n_new;
+        const unsigned int face_end =
+          last_is_b ? new_index[b] : (face_start + face.size() -
+                                      (first_is_a ? 0 : 1)) % n_new;
+
+        // Conditions keep their stretch of the outside; one that ended in
+        // the stretch now ends at the face's start, one that began there
+        // begins at the face's end, one wholly inside it is gone.
+        std::vector<CurveCondition> conditions;
+        for (CurveCondition condition : curve.conditions)
+          {
+            if (condition.has_range())
+              {
+                const unsigned int i = condition.first_segment,
+                                   j = condition.end_segment % n;
+                if (in[i] && in[j] && !condition.covers(b, n))
+                  continue;
+                condition.first_segment = in[i] ? face_end : new_index[i];
+                condition.end_segment =
+                  in[j] ? face_start :
+                          (condition.end_segment == n && new_index[0] == 0 ?
+                             n_new :
+                             new_index[j]);
+                // A range that kept no segment outside is gone too.
+                if (condition.first_segment % n_new ==
+                    condition.end_segment % n_new)
+                  continue;
+              }
+            conditions.push_back(condition);
+          }
+        std::vector<unsigned int> corners;
+        for (const unsigned int k : curve.corners)
+          if (!in[k])
+            corners.push_back(new_index[k]);
+        const unsigned int first_face_point = (new_index[a] + 1) % n_new;
+        for (const unsigned int i : face_corners)
+          corners.push_back((first_face_point + i) % n_new);
+        if (first_is_a)
+          corners.push_back(new_index[a]);
+        if (last_is_b)
+          corners.push_back(new_index[b]);
+        std::sort(corners.begin(), corners.end());
+        corners.erase(std::unique(corners.begin(), corners.end()),
+                      corners.end());
+
+        // The points themselves.
+        const std::vector<unsigned int> face_slots =
+          points.add_tracked_points(face, properties);
+        std::vector<unsigned int> removed_slots;
+        for (unsigned int k = 0; k < n; ++k)
+          if (in[k])
+            removed_slots.push_back(curve.tracked_slots[k]);
+        points.remove_tracked_points(removed_slots);
+
+        std::vector<Point<2>>     positions, initial;
+        std::vector<unsigned int> slots;
+        for (const int o : origin)
+          if (o >= 0)
+            {
+              positions.push_back(curve.positions[o]);
+              initial.push_back(curve.initial_positions[o]);
+              slots.push_back(curve.tracked_slots[o]);
+            }
+          else
+            {
+              positions.push_back(face[-1 - o]);
+              initial.push_back(initial_positions[-1 - o]);
+              slots.push_back(face_slots[-1 - o]);
+            }
+        curve.positions         = std::move(positions);
+        curve.initial_positions = std::move(initial);
+        curve.tracked_slots     = std::move(slots);
+        curve.corners           = std::move(corners);
+        curve.conditions        = std::move(conditions);
+        // The face is free: a condition that would now cover it is refused.
+        rebuild(curve);
+        for (unsigned int s = face_start; s != face_end; s = (s + 1) % n_new)
+          if (curve.condition_of_segment(s) != nullptr)
+            refuse("takes a stretch of the curve round the body whose "
+                   "condition would then hold on the excavation's face: "
+                   "give that condition a range of points outside the "
+                   "region");
+        n_inserted[c] += face.size();
+        n_removed[c] += removed_slots.size();
+        any_points_changed = true;
+        changed            = true;
+      }
+    return changed;
+  }
+} // namespace bsmpm
