@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""The face of an excavation as a boundary curve (doc/stages.md,
+"Excavation"): the column of prm/column-excavated.prm, ground at rest (K0)
+with a free closed curve round it, whose top is excavated down to a height
+H'. The column below heaves by rho g d y / M at height y (d = 8 - H', M the
+constrained modulus) and carries -rho g (H' - y).
+
+1. Small strain, the face at several heights, on grid lines and inside
+   cells: the probe's heave and vertical stress to round-off.
+2. Finite strain (the same curve): within --finite-tolerance of them.
+3. Refused, naming the parameter: a region inside the body (a cavity), a
+   region through the column's middle (it would cross the curve twice),
+   and a region that takes a stretch of a curve with a condition that
+   would then hold on the face.
+"""
+import argparse
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2]))
+from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
+
+parser = argparse.ArgumentParser(description=__doc__)
+parser.add_argument("--bsmpm", required=True)
+parser.add_argument("--prm", required=True)
+parser.add_argument("--np", type=int, default=1)
+parser.add_argument("--heights", default="7.9,6.7,6.5,6.33,3.3")
+parser.add_argument("--finite-tolerance", type=float, default=0.01)
+parser.add_argument("--parts", default="1,2,3")
+args = parser.parse_args()
+parts = {int(p) for p in args.parts.split(",")}
+
+g, H, y_probe = 9.81, 8.0, 2.5
+E, nu, rho = 1e7, 0.3, 2000.0
+M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+problems = []
+
+
+def region(top):
+    return f"Stages/Stage 2/Excavation=-1, {top}; 2, {top}; 2, 11; -1, 11"
+
+
+def check(what, value, expected, tolerance):
+    error = abs(value - expected) / abs(expected)
+    print(f"{what}: {value:.10e} (exact {expected:.10e}, relative error "
+          f"{error:.2e}, tolerance {tolerance:.0e})")
+    if not error <= tolerance:
+        problems.append(what)
+
+
+def column(top, settings=(), tolerance=1e-10, label="small strain"):
+    summary = run(args.bsmpm, args.prm, args.np,
+                  [region(top)] + list(settings))
+    q = summary["quantities"]
+    heave = rho * g * (H - top) * y_probe / M
+    check(f"{label}, face at {top} m: heave at y = {y_probe}",
+          q["probe_displacement_y"], heave, tolerance)
+    check(f"{label}, face at {top} m: sigma_yy at y = {y_probe}",
+          q["probe_stress_yy"], -rho * g * (top - y_probe), tolerance)
+    if q.get("curve1_points_inserted", 0) == 0:
+        problems.append(f"{label}, face at {top} m: no point of the face "
+                        "joined the curve")
+
+
+if 1 in parts:
+    for top in [float(t) for t in args.heights.split(",")]:
+        column(top)
+if 2 in parts:
+    column(6.7, ["Material/Kinematics=finite strain"], args.finite_tolerance,
+           "finite strain")
+if 3 in parts:
+    refusals = [
+        ("a cavity", ["Stages/Stage 2/Excavation=0.2, 3; 0.8, 3; 0.8, 4; "
+                      "0.2, 4"], "a cavity"),
+        ("a slice through the middle", ["Stages/Stage 2/Excavation=-1, 3; "
+                                        "2, 3; 2, 4; -1, 4"],
+         "more than once"),
+        ("a loaded stretch", ["Boundary curves/Curve 1/Condition=pressure "
+                              "1000", region(6.7)], "would then hold"),
+    ]
+    for what, settings, text in refusals:
+        summary, result = run(args.bsmpm, args.prm, args.np, settings,
+                              output=True, check=False)
+        message = result.stderr.strip().splitlines()[-1:] or [""]
+        print(f"{what}: exit {result.returncode}, {message[0][:200]}")
+        if result.returncode != 1 or text not in result.stderr or \
+                "Stages/Stage 2/Excavation" not in result.stderr:
+            problems.append(f"{what}: not refused with '{text}'")
+
+if problems:
+    print("FAILED:", "; ".join(problems))
+    sys.exit(1)
+print("OK")
