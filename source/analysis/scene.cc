@@ -686,10 +686,8 @@ namespace bsmpm
                                                where);
         // The face joins the closed curves round the body.
         if (!contact.enabled() &&
-            boundary_curves.excavate(stages.stage(k).excavation,
-                                     points,
-                                     grid,
-                                     where))
+            boundary_curves.excavate(
+              stages.stage(k).excavation, points, grid, where))
           update_curves(step);
         run_summary.quantities["excavated_points"] += removed;
         pcout << "       " << removed << " points excavated\n";

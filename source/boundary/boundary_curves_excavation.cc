@@ -64,7 +64,8 @@ namespace bsmpm
       const unsigned int  m = p.size();
       std::vector<double> vertex_position(m + 1, 0.);
       for (unsigned int i = 0; i < m; ++i)
-        vertex_position[i + 1] = vertex_position[i] + p[i].distance(p[(i + 1) % m]);
+        vertex_position[i + 1] =
+          vertex_position[i] + p[i].distance(p[(i + 1) % m]);
       const double perimeter = vertex_position[m];
       const double sx = arc_position(p, x), sy = arc_position(p, y);
       // Arc lengths from x in the direction of travel.
@@ -72,7 +73,7 @@ namespace bsmpm
         const double d = forward ? s - sx : sx - s;
         return d - perimeter * std::floor(d / perimeter);
       };
-      const double          end = ahead(sy);
+      const double                             end = ahead(sy);
       std::vector<std::pair<double, Point<2>>> vertices;
       for (unsigned int i = 0; i < m; ++i)
         {
@@ -80,9 +81,9 @@ namespace bsmpm
           if (a > tolerance && a < end - tolerance)
             vertices.emplace_back(a, p[i]);
         }
-      std::sort(vertices.begin(), vertices.end(), [](const auto &u, const auto &v) {
-        return u.first < v.first;
-      });
+      std::sort(vertices.begin(),
+                vertices.end(),
+                [](const auto &u, const auto &v) { return u.first < v.first; });
       std::vector<Point<2>> path = {x};
       for (const auto &v : vertices)
         path.push_back(v.second);
@@ -124,9 +125,13 @@ namespace bsmpm
       double   d       = std::numeric_limits<double>::infinity();
       for (unsigned int i = 0; i < polygon.size(); ++i)
         {
-          const Point<2>    &p0 = polygon[i], &p1 = polygon[(i + 1) % polygon.size()];
-          const Tensor<1, 2> e  = p1 - p0;
-          const double       t  = std::clamp((x - p0) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
+          const Point<2> &p0   = polygon[i],
+                         &p1   = polygon[(i + 1) % polygon.size()];
+          const Tensor<1, 2> e = p1 - p0;
+          const double       t =
+            std::clamp((x - p0) * e / std::max(e.norm_square(), 1e-300),
+                       0.,
+                       1.);
           if (x.distance(p0 + t * e) < d)
             {
               d       = x.distance(p0 + t * e);
@@ -193,9 +198,9 @@ namespace bsmpm
           for (unsigned int i = 0; i < 60; ++i)
             {
               const double u = (range[0] + range[1]) / 2;
-              (inside(curve.spline->value(u)) == leaving_at_start ?
-                 range[0] :
-                 range[1]) = u;
+              (inside(curve.spline->value(u)) == leaving_at_start ? range[0] :
+                                                                    range[1]) =
+                u;
             }
           return onto_edge(curve.spline->value((range[0] + range[1]) / 2));
         };
@@ -219,11 +224,10 @@ namespace bsmpm
             }
           return some_inside;
         };
-        const std::vector<Point<2>> forward =
-                                      polygon_path(polygon, x1, x2, true, tolerance),
-                                    backward =
-                                      polygon_path(polygon, x1, x2, false, tolerance);
-        const bool forward_inside = runs_inside(forward),
+        const std::vector<Point<2>>
+          forward  = polygon_path(polygon, x1, x2, true, tolerance),
+          backward = polygon_path(polygon, x1, x2, false, tolerance);
+        const bool forward_inside  = runs_inside(forward),
                    backward_inside = runs_inside(backward);
         if (forward_inside == backward_inside)
           refuse("has an edge that leaves and enters the body again between "
@@ -235,10 +239,11 @@ namespace bsmpm
         // chain's point outside is that point.
         double perimeter = 0;
         for (unsigned int k = 0; k < n; ++k)
-          perimeter += curve.positions[k].distance(curve.positions[(k + 1) % n]);
-        const double spacing = std::min(perimeter / n, h);
-        const bool   first_is_a = x1.distance(curve.positions[a]) < 0.2 * spacing;
-        const bool   last_is_b  = x2.distance(curve.positions[b]) < 0.2 * spacing;
+          perimeter +=
+            curve.positions[k].distance(curve.positions[(k + 1) % n]);
+        const double spacing  = std::min(perimeter / n, h);
+        const bool first_is_a = x1.distance(curve.positions[a]) < 0.2 * spacing;
+        const bool last_is_b  = x2.distance(curve.positions[b]) < 0.2 * spacing;
         std::vector<Point<2>>     face;
         std::vector<unsigned int> face_corners; // in face
         for (unsigned int leg = 0; leg + 1 < path.size(); ++leg)
@@ -248,13 +253,13 @@ namespace bsmpm
                 face_corners.push_back(face.size());
                 face.push_back(path[leg]);
               }
-            const unsigned int pieces = std::max(
-              1u,
-              static_cast<unsigned int>(
-                std::round(path[leg].distance(path[leg + 1]) / spacing)));
+            const unsigned int pieces =
+              std::max(1u,
+                       static_cast<unsigned int>(std::round(
+                         path[leg].distance(path[leg + 1]) / spacing)));
             for (unsigned int i = 1; i < pieces; ++i)
-              face.push_back(path[leg] +
-                             (double(i) / pieces) * (path[leg + 1] - path[leg]));
+              face.push_back(path[leg] + (double(i) / pieces) *
+                                           (path[leg + 1] - path[leg]));
           }
         if (!last_is_b)
           {
@@ -277,11 +282,12 @@ namespace bsmpm
             std::ostringstream at;
             at << "(" << face[i] << ")";
             AssertThrow(!means[i].empty(),
-                        ExcMessage(where + ": no material lies within a cell "
-                                           "of the excavation's face at " +
+                        ExcMessage(where +
+                                   ": no material lies within a cell "
+                                   "of the excavation's face at " +
                                    at.str() + " (" + name + ")."));
             std::vector<double> props = means[i];
-            const Point<2> X(face[i][0] - props[P::displacement],
+            const Point<2>      X(face[i][0] - props[P::displacement],
                              face[i][1] - props[P::displacement + 1]);
             props[P::initial_position]     = X[0];
             props[P::initial_position + 1] = X[1];
@@ -311,8 +317,8 @@ namespace bsmpm
         const unsigned int face_start =
           first_is_a ? new_index[a] : (new_index[a] + 1) % n_new;
         const unsigned int face_end =
-          last_is_b ? new_index[b] : (face_start + face.size() -
-                                      (first_is_a ? 0 : 1)) % n_new;
+          last_is_b ? new_index[b] :
+                      (face_start + face.size() - (first_is_a ? 0 : 1)) % n_new;
 
         // Conditions keep their stretch of the outside; one that ended in
         // the stretch now ends at the face's start, one that began there

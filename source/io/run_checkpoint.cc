@@ -63,7 +63,8 @@ namespace bsmpm
                              "), and a resumed run rebuilds the curves as they "
                              "were at the start. Resume from an earlier "
                              "checkpoint, or run with 'Boundary curves/Point "
-                             "spacing/Adapt = false'."));
+                             "spacing/Adapt = false' (the face of an "
+                             "excavation joins the curves all the same)."));
     parts.assembly.restore_matrix(weak_cells);
     // Checkpoints of earlier versions have no such state: resumed,
     // their next step starts from zero; with rigid bodies they are

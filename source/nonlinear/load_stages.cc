@@ -75,11 +75,12 @@ namespace bsmpm
           "",
           Patterns::Anything(),
           "A polygon 'x0, y0; x1, y1; ...' in m whose material the stage "
-          "removes at its start (small strain): the points inside leave "
-          "the body, and the forces they exerted on the rest are released "
-          "over the stage's load steps. Empty: none. The boundary curves "
-          "must stay more than a cell away from it (the cut's face is the "
-          "edge of the points left).");
+          "removes at its start: the points inside leave the body, and the "
+          "forces they exerted on the rest are released over the stage's "
+          "load steps. Empty: none. The cut's face joins a closed curve of "
+          "tracking points round the body (in finite strain the one added "
+          "round the body region); other curves and the probe must stay "
+          "more than a cell away from the polygon.");
         prm.declare_entry(
           "Construction",
           "",

@@ -234,14 +234,13 @@ namespace bsmpm
     // on the order in which points arrived in their cells.
     const unsigned int  W = n_point_properties + 1;
     std::vector<double> sums(positions.size() * W, 0.);
-    std::vector<std::pair<types::particle_index, ArrayView<const double>>>
-      near;
+    std::vector<std::pair<types::particle_index, ArrayView<const double>>> near;
     // The cells that the square of half-width radius round x overlaps.
     const auto cells_round = [&](const Point<2> &x, const double sign) {
       Point<2> corner = x + sign * radius * Tensor<1, 2>({1., 1.});
       for (unsigned int d = 0; d < 2; ++d)
-        corner[d] = std::clamp(corner[d], grid.lower_left()[d],
-                               grid.upper_right()[d]);
+        corner[d] =
+          std::clamp(corner[d], grid.lower_left()[d], grid.upper_right()[d]);
       return grid.cell_index(corner);
     };
     for (unsigned int i = 0; i < positions.size(); ++i)
