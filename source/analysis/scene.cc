@@ -676,19 +676,17 @@ namespace bsmpm
           if (contact.enabled() || !boundary_curves.follows_excavation(c))
             for (const unsigned int slot : curves[c].tracked_slots)
               kept.push_back(tracked[slot]);
-        const auto removed = excavation.remove(stages.stage(k).excavation,
-                                               points,
-                                               grid,
-                                               assembly->kernel(),
-                                               before.gravity * gravity,
-                                               finite_strain(),
-                                               kept,
-                                               where);
+        const auto removed = excavation.remove(
+          stages.stage(k).excavation, points, grid, kept, where);
         // The face joins the closed curves round the body.
         if (!contact.enabled() &&
             boundary_curves.excavate(
               stages.stage(k).excavation, points, grid, where))
           update_curves(step);
+        // What the rest is out of balance by, released over the stage.
+        TrilinosWrappers::MPI::Vector balance;
+        load_stepper->out_of_balance(k - 1., balance);
+        excavation.release(balance);
         run_summary.quantities["excavated_points"] += removed;
         pcout << "       " << removed << " points excavated\n";
       }

@@ -360,11 +360,11 @@ namespace bsmpm
                                      parts.finite_strain ? &system_matrix :
                                                            nullptr);
       }
+    system_matrix.compress(VectorOperation::add);
+    system_rhs.compress(VectorOperation::add);
     parts.excavation.add_released_forces(level.release,
                                          constraints,
                                          system_rhs);
-    system_matrix.compress(VectorOperation::add);
-    system_rhs.compress(VectorOperation::add);
     weight_norm = 0;
     if (weight.size() > 0)
       {

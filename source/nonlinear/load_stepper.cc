@@ -258,6 +258,35 @@ namespace bsmpm
 
 
   void
+  LoadStepper::out_of_balance(const double                   tau,
+                              TrilinosWrappers::MPI::Vector &balance)
+  {
+    SystemAssembly                 &assembly = parts.assembly;
+    const std::vector<CellMoments> &moments  = prepare_increment(0, tau);
+    const LoadLevel                 level    = parts.stages.level(tau);
+    const LoadIncrement             none{level.loads, level.loads};
+    if (assembly.fits_prescribed_displacement())
+      assembly.fit_prescribed_displacement(none);
+    assembly.assemble(level, none, moments, cell_quality);
+    if (parts.constitutive_update == nullptr)
+      {
+        balance = assembly.rhs();
+        return;
+      }
+    if (parts.contact != nullptr)
+      begin_contact(tau, 0.);
+    parts.constitutive_update->set_body_force(level.gravity, parts.gravity);
+    parts.increment = 0;
+    assembly.newton_system(*parts.constitutive_update,
+                           parts.points,
+                           parts.increment,
+                           assembly.prescribed_displacement());
+    balance = assembly.residual();
+  }
+
+
+
+  void
   LoadStepper::begin_contact(const double lambda, const double delta)
   {
     parts.contact->begin_increment(parts.curves,

@@ -1,5 +1,3 @@
-#include <deal.II/base/mpi.h>
-
 #include <bsmpm/geometry/body_region.h>
 #include <bsmpm/points/excavation.h>
 #include <bsmpm/points/material_points.h>
@@ -14,9 +12,6 @@ namespace bsmpm
   Excavation::remove(const std::vector<Point<2>> &polygon,
                      MaterialPoints              &points,
                      const BackgroundGrid        &grid,
-                     const Q1CellKernel          &kernel,
-                     const Tensor<1, 2>          &gravity,
-                     const bool                   finite_strain,
                      const std::vector<Point<2>> &kept_points,
                      const std::string           &where)
   {
@@ -50,60 +45,33 @@ namespace bsmpm
                      "the probe more than a cell away from the region.";
           AssertThrow(false, ExcMessage(message.str()));
         }
-
-    std::vector<CellMoments>    moments, masses;
-    const types::particle_index n = points.remove_points(
-      [&](const Point<2> &x) { return polygon_contains(polygon, x); },
-      moments,
-      masses,
-      finite_strain);
-
     forces.clear();
-    Vector<double> internal(8), external(8);
-    for (const auto &cell : grid.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const CellMoments &m = moments[cell->active_cell_index()];
-          if (m.v == 0)
-            continue;
-          internal = 0;
-          external = 0;
-          kernel.add_internal_force(m, internal);
-          kernel.add_body_force(masses[cell->active_cell_index()],
-                                gravity,
-                                external);
-          CellForces                           released;
-          std::vector<types::global_dof_index> dofs(8);
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < 8; ++i)
-            {
-              released.dofs[i]   = dofs[i];
-              released.forces[i] = external[i] - internal[i];
-            }
-          forces.push_back(released);
-        }
-    return n;
+    return points.remove_points(
+      [&](const Point<2> &x) { return polygon_contains(polygon, x); });
   }
 
 
 
   void
-  Excavation::add_released_forces(const double                     factor,
-                                  const AffineConstraints<double> &constraints,
-                                  TrilinosWrappers::MPI::Vector   &rhs) const
+  Excavation::release(const TrilinosWrappers::MPI::Vector &out_of_balance)
   {
-    if (factor == 0)
+    forces = out_of_balance;
+    forces *= -1.;
+  }
+
+
+
+  void
+  Excavation::add_released_forces(
+    const double                     factor,
+    const AffineConstraints<double> &constraints,
+    TrilinosWrappers::MPI::Vector   &rhs) const
+  {
+    if (factor == 0 || forces.size() == 0)
       return;
-    Vector<double>                       local(8);
-    std::vector<types::global_dof_index> dofs(8);
-    for (const CellForces &cell : forces)
-      {
-        for (unsigned int i = 0; i < 8; ++i)
-          {
-            local[i] = factor * cell.forces[i];
-            dofs[i]  = cell.dofs[i];
-          }
-        constraints.distribute_local_to_global(local, dofs, rhs);
-      }
+    TrilinosWrappers::MPI::Vector released(forces);
+    released *= factor;
+    constraints.set_zero(released);
+    rhs.add(1., released);
   }
 } // namespace bsmpm

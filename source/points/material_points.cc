@@ -412,38 +412,14 @@ namespace bsmpm
 
   types::particle_index
   MaterialPoints::remove_points(
-    const std::function<bool(const Point<2> &)> &inside,
-    std::vector<CellMoments>                    &moments,
-    std::vector<CellMoments>                    &masses,
-    const bool                                   finite_strain)
+    const std::function<bool(const Point<2> &)> &inside)
   {
-    moments.assign(grid.triangulation().n_active_cells(), CellMoments());
-    masses.assign(grid.triangulation().n_active_cells(), CellMoments());
     std::vector<Particles::ParticleHandler<2>::particle_iterator> removed;
     for (auto particle = particles.begin(); particle != particles.end();
          ++particle)
-      {
-        const ArrayView<const double> properties = particle->get_properties();
-        if (properties[Property::volume] > 0 &&
-            inside(particle->get_location()))
-          {
-            const auto cell = particle->get_surrounding_cell();
-            moments[cell->active_cell_index()].add(
-              particle->get_reference_location(),
-              properties[Property::volume],
-              Voigt({properties[Property::stress],
-                     properties[Property::stress + 1],
-                     properties[Property::stress + 2]}));
-            // In finite strain the mass is that of the volume at the
-            // start, V / det F (ConstitutiveUpdate's body force).
-            masses[cell->active_cell_index()].add(
-              particle->get_reference_location(),
-              density(properties) * properties[Property::volume] /
-                (finite_strain ? properties[Property::det_F] : 1.),
-              Voigt());
-            removed.push_back(particle);
-          }
-      }
+      if (particle->get_properties()[Property::volume] > 0 &&
+          inside(particle->get_location()))
+        removed.push_back(particle);
     const types::particle_index n =
       Utilities::MPI::sum<types::particle_index>(removed.size(),
                                                  grid.mpi_communicator());

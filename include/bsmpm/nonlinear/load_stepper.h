@@ -148,6 +148,16 @@ namespace bsmpm
     advance_under_displacement_control(const unsigned int step,
                                        LoadStepRecord    &record);
 
+    /**
+     * The out-of-balance force F_ext - F_int of the points as they are, at
+     * load path parameter @p tau: the system's residual at a zero
+     * increment (the linear system's right-hand side, or Newton's
+     * residual), into @p balance. What an excavation releases
+     * (Excavation::release()).
+     */
+    void
+    out_of_balance(const double tau, TrilinosWrappers::MPI::Vector &balance);
+
     /** The resultant of the tractions on the curves at the load factor
      * reached (that of the last assembly under load control). */
     Tensor<1, 2>

@@ -2,16 +2,14 @@
 #define bsmpm_excavation_h
 
 #include <deal.II/base/point.h>
-#include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <bsmpm/geometry/background_grid.h>
-#include <bsmpm/points/q1_cell_kernel.h>
 
-#include <array>
+#include <string>
 #include <vector>
 
 namespace bsmpm
@@ -27,69 +25,60 @@ namespace bsmpm
    * steps.
    *
    * Before the removal the body is in balance, F_ext - F_int = 0 at every
-   * node. Without the removed points the rest would see at once the
-   * out-of-balance force f = F_ext(removed) - F_int(removed) = sum over the
-   * removed points of V (N^T b - B^T sigma): the forces the removed
-   * material exerted on the rest, at the nodes they shared. The stage adds
-   * (1 - s) f to the loads, s its own factor, so that the rest starts in
-   * balance and carries the cut's unloading gradually; a cut that cannot
-   * stand collapses part way (the collapse detector's limit load factor is
-   * the fraction released).
-   *
-   * The forces are taken from the removed points' cell moments (the Q1
-   * kernel integrates B^T sigma over them exactly): their volumes and
-   * Cauchy stresses as they are, and in finite strain their masses from
-   * the volumes at the start.
+   * node. Without the removed points (and with the cut cells along the new
+   * face integrated over their new part in the body) the rest is not: its
+   * out-of-balance force R = F_ext - F_int is, but for the Newton
+   * tolerance of the step before, minus the forces the removed material
+   * exerted on it, sum over the removed points of V (N^T b - B^T sigma),
+   * plus what the new quadrature of the cut cells changes. The stage adds
+   * f = -R times (1 - s) to the loads, s its own factor, so that the rest
+   * starts in balance and carries the cut's unloading gradually; a cut that
+   * cannot stand collapses part way (the collapse detector's limit load
+   * factor is the fraction released). R is the system's own residual at a
+   * zero increment (LoadStepper::out_of_balance()), in small and finite
+   * strain alike.
    */
   class Excavation
   {
   public:
     /**
-     * Removes the material points inside @p polygon from @p points and
-     * keeps the forces they exerted on the rest under the gravity
-     * @p gravity (times its load multiplier; the points' masses from their
-     * bodies' densities; @p finite_strain: ConstitutiveUpdate's masses).
+     * Removes the material points inside @p polygon from @p points.
      * @p kept_points are the positions of the tracked points whose curve
      * does not follow the cut (BoundaryCurves::excavate(): open curves,
      * curves of material points, curves in contact) and of the probe: a
      * polygon that holds one of them, or comes within a cell of one, is
-     * refused (the message names @p where). Returns how many points were
-     * removed.
+     * refused (the message names @p where). Forgets the forces of an
+     * earlier removal. Returns how many points were removed.
      */
     types::particle_index
     remove(const std::vector<Point<2>> &polygon,
            MaterialPoints              &points,
            const BackgroundGrid        &grid,
-           const Q1CellKernel          &kernel,
-           const Tensor<1, 2>          &gravity,
-           const bool                   finite_strain,
            const std::vector<Point<2>> &kept_points,
            const std::string           &where);
+
+    /** Keeps the forces to release: minus @p out_of_balance, the rest's
+     * out-of-balance force after the removal. */
+    void
+    release(const TrilinosWrappers::MPI::Vector &out_of_balance);
 
     /** Whether a removal left forces to release. */
     bool
     releases() const
     {
-      return !forces.empty();
+      return forces.size() > 0;
     }
 
-    /** Adds @p factor times the released forces to @p rhs, with
-     * @p constraints. */
+    /** Adds @p factor times the released forces to @p rhs (compressed),
+     * but for the rows that @p constraints constrain (among them the DoFs
+     * of no cell with material). */
     void
     add_released_forces(const double                     factor,
                         const AffineConstraints<double> &constraints,
                         TrilinosWrappers::MPI::Vector   &rhs) const;
 
-
   private:
-    /** A locally owned cell that lost points: its DoFs and the forces on
-     * them. */
-    struct CellForces
-    {
-      std::array<types::global_dof_index, 8> dofs;
-      std::array<double, 8>                  forces;
-    };
-    std::vector<CellForces> forces;
+    TrilinosWrappers::MPI::Vector forces;
   };
 } // namespace bsmpm
 

@@ -283,18 +283,11 @@ namespace bsmpm
 
     /**
      * Removes the material points (with volume) for which @p inside is true
-     * at their position, after adding their volumes and stresses to
-     * @p moments and their masses to @p masses (indexed by
-     * active_cell_index(), as compute_cell_moments() and
-     * compute_mass_moments(); in @p finite_strain the masses of the
-     * volumes at the start, V / det F) (Excavation). Returns how many were
-     * removed on all processes.
+     * at their position (Excavation). Returns how many were removed on all
+     * processes.
      */
     types::particle_index
-    remove_points(const std::function<bool(const Point<2> &)> &inside,
-                  std::vector<CellMoments>                    &moments,
-                  std::vector<CellMoments>                    &masses,
-                  const bool finite_strain = false);
+    remove_points(const std::function<bool(const Point<2> &)> &inside);
 
     /** Sets the total displacements of all points to zero (a stage that
      * measures its own displacements); positions, strains, stresses and
