@@ -62,10 +62,9 @@ namespace bsmpm
 
 
   void
-  Excavation::add_released_forces(
-    const double                     factor,
-    const AffineConstraints<double> &constraints,
-    TrilinosWrappers::MPI::Vector   &rhs) const
+  Excavation::add_released_forces(const double                     factor,
+                                  const AffineConstraints<double> &constraints,
+                                  TrilinosWrappers::MPI::Vector   &rhs) const
   {
     if (factor == 0 || forces.size() == 0)
       return;
