@@ -277,6 +277,7 @@ namespace bsmpm
       begin_contact(tau, 0.);
     parts.constitutive_update->set_body_force(level.gravity, parts.gravity);
     parts.increment = 0;
+    parts.increment.update_ghost_values();
     assembly.newton_system(*parts.constitutive_update,
                            parts.points,
                            parts.increment,
