@@ -448,6 +448,7 @@ namespace bsmpm
       std::make_unique<RunCheckpoint>(checkpoint,
                                       RunCheckpoint::Parts{grid,
                                                            points,
+                                                           boundary_curves,
                                                            *assembly,
                                                            *increment_solver,
                                                            collapse_detector,

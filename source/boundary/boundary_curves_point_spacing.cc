@@ -1,8 +1,16 @@
 #include <bsmpm/boundary/boundary_curves.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <sstream>
+
 // BoundaryCurves, part 3: the tracking points inserted and removed where
 // the body has stretched or crowded them (the plan is BoundaryPointSpacing's),
-// in the points and in the curves' chains.
+// in the points and in the curves' chains, and what a checkpoint keeps of
+// changed chains.
 
 namespace bsmpm
 {
@@ -154,6 +162,67 @@ namespace bsmpm
         quantities[name + "_points_removed"]  = n_removed[c];
         quantities[name + "_points"]          = curves[c].positions.size();
         n_inserted[c] = n_removed[c] = 0;
+      }
+  }
+
+
+  std::string
+  BoundaryCurves::chain_state() const
+  {
+    std::ostringstream out;
+    {
+      boost::archive::binary_oarchive archive(out);
+      archive << n_inserted << n_removed << any_points_changed;
+      for (const BoundaryCurve &curve : curves)
+        {
+          // A condition by its parameter (CurveCondition::where), which
+          // names it among those the curve was given.
+          std::vector<std::string>  where;
+          std::vector<unsigned int> first, end;
+          for (const auto &condition : curve.conditions)
+            {
+              where.push_back(condition.where);
+              first.push_back(condition.first_segment);
+              end.push_back(condition.end_segment);
+            }
+          archive << curve.tracked_slots << curve.initial_positions
+                  << curve.corners << where << first << end;
+        }
+    }
+    return out.str();
+  }
+
+
+
+  void
+  BoundaryCurves::restore_chains(const std::string &state)
+  {
+    std::istringstream              in(state);
+    boost::archive::binary_iarchive archive(in);
+    archive >> n_inserted >> n_removed >> any_points_changed;
+    for (BoundaryCurve &curve : curves)
+      {
+        std::vector<std::string>  where;
+        std::vector<unsigned int> first, end;
+        archive >> curve.tracked_slots >> curve.initial_positions >>
+          curve.corners >> where >> first >> end;
+        std::vector<CurveCondition> conditions;
+        for (unsigned int i = 0; i < where.size(); ++i)
+          {
+            const auto given =
+              std::find_if(curve.conditions.begin(),
+                           curve.conditions.end(),
+                           [&](const auto &c) { return c.where == where[i]; });
+            AssertThrow(given != curve.conditions.end(),
+                        ExcMessage("The checkpoint's " + curve.name +
+                                   " has a condition '" + where[i] +
+                                   "' that the parameters do not give."));
+            conditions.push_back(*given);
+            conditions.back().first_segment = first[i];
+            conditions.back().end_segment   = end[i];
+          }
+        curve.conditions = std::move(conditions);
+        curve.positions.assign(curve.tracked_slots.size(), Point<2>());
       }
   }
 } // namespace bsmpm

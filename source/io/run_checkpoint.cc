@@ -3,6 +3,7 @@
 #include <boost/archive/archive_exception.hpp>
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
 
 #include <sstream>
 #include <stdexcept>
@@ -22,7 +23,8 @@ namespace bsmpm
                        const OutputWriter &output) const
   {
     // What the next step starts from, the linear solver's choice of
-    // method, and the contact's state (the same on every process).
+    // method, the contact's state, and the curves' chains with the tracked
+    // list (the same on every process).
     std::ostringstream state;
     {
       const IncrementSolver::Memory   memory = parts.increment_solver.memory();
@@ -30,6 +32,9 @@ namespace bsmpm
       archive << memory << parts.collapse_detector << parts.linear_solver;
       if (parts.contact != nullptr)
         archive << *parts.contact;
+      const std::string tracking = parts.points.tracking_state(),
+                        chains   = parts.curves.chain_state();
+      archive << tracking << chains;
     }
     // A resumed run starts its solves without the factors, hierarchies and
     // first guesses of earlier ones: so does this run from here on.
@@ -51,20 +56,6 @@ namespace bsmpm
     std::vector<CellId> weak_cells;
     const unsigned int  first_step =
       checkpoint.read_state(summary, output, weak_cells) + 1;
-    // The curves and the tracked list are rebuilt as at the start,
-    // which no longer matches points that were inserted or removed
-    // (their records begin with the first change).
-    for (const auto &record : summary.steps)
-      AssertThrow(record.quantities.count("curve1_points") == 0,
-                  ExcMessage("This checkpoint cannot be resumed: the boundary "
-                             "curves gained or lost tracking points before it "
-                             "(from load step " +
-                             std::to_string(record.number) +
-                             "), and a resumed run rebuilds the curves as they "
-                             "were at the start. Resume from an earlier "
-                             "checkpoint, or run with 'Boundary curves/Point "
-                             "spacing/Adapt = false' (the face of an "
-                             "excavation joins the curves all the same)."));
     parts.assembly.restore_matrix(weak_cells);
     // Checkpoints of earlier versions have no such state: resumed,
     // their next step starts from zero; with rigid bodies they are
@@ -84,7 +75,38 @@ namespace bsmpm
         parts.increment_solver.restore(memory);
         if (parts.contact != nullptr)
           archive >> *parts.contact;
+        // The curves' chains and the tracked list, where the checkpoint
+        // has them (versions before kept none and rebuild the curves as
+        // at the start).
+        std::string tracking, chains;
+        try
+          {
+            archive >> tracking >> chains;
+          }
+        catch (const boost::archive::archive_exception &)
+          {
+            tracking.clear();
+          }
+        if (!tracking.empty())
+          {
+            parts.points.restore_tracking(tracking);
+            parts.curves.restore_chains(chains);
+            return first_step;
+          }
       }
+    // Without the chains in the checkpoint, the curves and the tracked
+    // list are rebuilt as at the start, which no longer matches points
+    // that were inserted or removed (their records begin with the first
+    // change).
+    for (const auto &record : summary.steps)
+      AssertThrow(record.quantities.count("curve1_points") == 0,
+                  ExcMessage("This checkpoint cannot be resumed: the boundary "
+                             "curves gained or lost tracking points before it "
+                             "(from load step " +
+                             std::to_string(record.number) +
+                             "), and it was written by a version of bsmpm "
+                             "that did not keep them. Resume from an earlier "
+                             "checkpoint."));
     return first_step;
   }
 

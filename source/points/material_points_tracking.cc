@@ -2,13 +2,20 @@
 
 #include <bsmpm/points/material_points.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
 #include <map>
 #include <set>
+#include <sstream>
 
 // MaterialPoints, part 3: the tracked points (the boundary curves' points),
 // whose positions and states every process gathers, and the tracking points
-// inserted and removed as the curves' points are respaced.
+// inserted and removed as the curves' points are respaced, and what a
+// checkpoint keeps of them.
 
 namespace bsmpm
 {
@@ -242,5 +249,38 @@ namespace bsmpm
           if (displacements != nullptr)
             (*displacements)[slot] = Tensor<1, 2>({state[12], state[13]});
         }
+  }
+
+
+  std::string
+  MaterialPoints::tracking_state() const
+  {
+    std::ostringstream out;
+    {
+      boost::archive::binary_oarchive archive(out);
+      archive << tracked_slots << n_tracked_slots << next_id;
+    }
+    return out.str();
+  }
+
+
+
+  void
+  MaterialPoints::restore_tracking(const std::string &state)
+  {
+    std::istringstream in(state);
+    {
+      boost::archive::binary_iarchive archive(in);
+      types::particle_index           saved_next_id = 0;
+      archive >> tracked_slots >> n_tracked_slots >> saved_next_id;
+      // The ids reserved at the set-up for bodies built later come before
+      // the points inserted since.
+      next_id = std::max(next_id, saved_next_id);
+    }
+    is_tracked.assign(next_id, false);
+    for (const auto &[id, slot] : tracked_slots)
+      is_tracked[id] = true;
+    neighbourhood_current = false;
+    record_tracked_points();
   }
 } // namespace bsmpm

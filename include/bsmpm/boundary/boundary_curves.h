@@ -237,6 +237,19 @@ namespace bsmpm
     bool
     follows_excavation(const unsigned int c) const;
 
+    /** The curves' chains (their points' slots, starting places and
+     * corners, the ranges of their conditions) and the counts of points
+     * inserted and removed, as a string of bytes: what a checkpoint keeps
+     * of curves whose points changed (adapt_point_spacing(), excavate()),
+     * with MaterialPoints::tracking_state(). */
+    std::string
+    chain_state() const;
+
+    /** Takes back a chain_state() into the curves as the parameters made
+     * them; update() then rebuilds their splines. */
+    void
+    restore_chains(const std::string &state);
+
     /** Whether any curve's points have changed in the run. */
     bool
     points_changed() const

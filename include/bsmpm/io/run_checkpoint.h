@@ -2,6 +2,7 @@
 #define bsmpm_run_checkpoint_h
 
 #include <bsmpm/assembly/system_assembly.h>
+#include <bsmpm/boundary/boundary_curves.h>
 #include <bsmpm/contact/curve_contact.h>
 #include <bsmpm/geometry/background_grid.h>
 #include <bsmpm/io/checkpoint.h>
@@ -26,7 +27,9 @@ namespace bsmpm
    * made for (SystemAssembly), what the next load step starts from
    * (IncrementSolver::Memory), the collapse detector's history, the linear
    * solver's choice of method and the contact's state (the same on every
-   * process), the last four as one binary archive. What cannot be kept
+   * process), and the curves' chains with the tracked list (where points
+   * were inserted or removed), the last six as one binary archive. What
+   * cannot be kept
    * (factors, multigrid hierarchies, CG's first guess) the run drops when
    * it writes a checkpoint (LinearSolver::drop_reused_state()), so that
    * on one process a resumed run is bitwise the run left alone.
@@ -39,6 +42,7 @@ namespace bsmpm
     {
       const BackgroundGrid &grid;
       MaterialPoints       &points;
+      BoundaryCurves       &curves;
       SystemAssembly       &assembly;
       IncrementSolver      &increment_solver;
       CollapseDetector     &collapse_detector;
@@ -59,9 +63,9 @@ namespace bsmpm
     /**
      * Restores the summary, the series records of @p output and the state
      * of the parts from the checkpoint being resumed; returns the first
-     * load step to run. Refuses checkpoints that cannot be resumed (the
-     * curves changed their points before it; rigid bodies without a
-     * contact state).
+     * load step to run. Refuses checkpoints that cannot be resumed (written
+     * by a version that did not keep the curves' chains, after the curves
+     * changed their points; rigid bodies without a contact state).
      */
     unsigned int
     resume(RunSummary &summary, OutputWriter &output) const;

@@ -346,6 +346,18 @@ namespace bsmpm
     add_tracked_points(const std::vector<Point<2>>            &positions,
                        const std::vector<std::vector<double>> &properties);
 
+    /** The tracked list (ids by slot, the slots of removed points
+     * included) and the next free id, as a string of bytes: what a
+     * checkpoint keeps of a run whose curves gained or lost points
+     * (BoundaryCurves::chain_state()). */
+    std::string
+    tracking_state() const;
+
+    /** Takes back a tracking_state(), after the points were read from the
+     * same checkpoint. */
+    void
+    restore_tracking(const std::string &state);
+
     /**
      * Removes the tracked points in the slots @p slots (the same list on
      * every process) from the points. Their slots stay in the tracked list,

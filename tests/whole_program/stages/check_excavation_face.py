@@ -11,14 +11,19 @@ constrained modulus) and carries -rho g (H' - y).
 3. Released over 4 steps (small strain, the face inside a cell): the
    first step heaves a quarter of the whole to round-off (the rest starts
    in balance, the cut cells along the new face included).
-4. Refused, naming the parameter: a region inside the body (a cavity), a
+4. Resumed from a checkpoint written after an excavation changed the
+   curve (finite strain, a second excavation after it), the run ends where
+   the run left alone ends, to the last digit.
+5. Refused, naming the parameter: a region inside the body (a cavity), a
    region through the column's middle (it would cross the curve twice),
    and a region that takes a stretch of a curve with a condition that
    would then hold on the face.
 """
 import argparse
+import os
 import pathlib
 import sys
+import tempfile
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2]))
 from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
@@ -29,7 +34,7 @@ parser.add_argument("--prm", required=True)
 parser.add_argument("--np", type=int, default=1)
 parser.add_argument("--heights", default="7.9,6.7,6.5,6.33,3.3")
 parser.add_argument("--finite-tolerance", type=float, default=0.01)
-parser.add_argument("--parts", default="1,2,3,4")
+parser.add_argument("--parts", default="1,2,3,4,5")
 args = parser.parse_args()
 parts = {int(p) for p in args.parts.split(",")}
 
@@ -78,6 +83,28 @@ if 3 in parts:
     check("4 steps: heave after the first", first,
           rho * g * (H - 6.7) * y_probe / M / 4, 1e-10)
 if 4 in parts:
+    with tempfile.TemporaryDirectory() as directory:
+        settings = ["Material/Kinematics=finite strain",
+                    "Stages/Number of stages=3",
+                    "Stages/Stage 2/Excavation=-1, 7.5; 2, 7.5; 2, 11; -1, 11",
+                    "Stages/Stage 3/Load steps=2",
+                    "Stages/Stage 3/Load factor=0",
+                    "Stages/Stage 3/" + region(6.7).split("/", 2)[2],
+                    "Output/Checkpoint interval=1"]
+        whole = run(args.bsmpm, args.prm, args.np, settings,
+                    directory=directory)
+        resumed = run(args.bsmpm, None, args.np, directory=directory,
+                      arguments=["--resume",
+                                 os.path.join(directory, "checkpoint-2")])
+        same = (whole["quantities"] == resumed["quantities"] and
+                whole["errors"] == resumed["errors"])
+        print(f"resumed after the first excavation: "
+              f"{'the same end' if same else 'a different end'} "
+              f"(curve 1 has {resumed['quantities']['curve1_points']:g} "
+              "points)")
+        if not same:
+            problems.append("resumed after an excavation: a different end")
+if 5 in parts:
     refusals = [
         ("a cavity", ["Stages/Stage 2/Excavation=0.2, 3; 0.8, 3; 0.8, 4; "
                       "0.2, 4"], "a cavity"),
