@@ -677,12 +677,18 @@ namespace bsmpm
           if (contact.enabled() || !boundary_curves.follows_excavation(c))
             for (const unsigned int slot : curves[c].tracked_slots)
               kept.push_back(tracked[slot]);
-        const auto removed = excavation.remove(
-          stages.stage(k).excavation, points, grid, kept, where);
+        const LoadStages::Stage    &stage = stages.stage(k);
+        const std::vector<Point<2>> region =
+          Excavation::region_outline(stage.excavation,
+                                     stage.excavation_spline,
+                                     grid.min_cell_size() / 16,
+                                     where);
+        const auto removed =
+          excavation.remove(region, points, grid, kept, where);
         // The face joins the closed curves round the body.
         if (!contact.enabled() &&
             boundary_curves.excavate(
-              stages.stage(k).excavation, points, grid, where))
+              region, stage.excavation_spline, points, grid, where))
           update_curves(step);
         // What the rest is out of balance by, released over the stage.
         TrilinosWrappers::MPI::Vector balance;

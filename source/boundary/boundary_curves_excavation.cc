@@ -104,6 +104,7 @@ namespace bsmpm
 
   bool
   BoundaryCurves::excavate(const std::vector<Point<2>> &polygon,
+                           const bool                   smooth_edge,
                            MaterialPoints              &points,
                            const BackgroundGrid        &grid,
                            const std::string           &where)
@@ -236,7 +237,9 @@ namespace bsmpm
 
         // The face's points, its corners among them, about as far apart as
         // the curve's points are (at most a cell); an end next to the
-        // chain's point outside is that point.
+        // chain's point outside is that point. A smooth edge (a sampled
+        // B-spline) has corners at its ends only, its points evenly along
+        // its length.
         double perimeter = 0;
         for (unsigned int k = 0; k < n; ++k)
           perimeter +=
@@ -246,20 +249,37 @@ namespace bsmpm
         const bool last_is_b  = x2.distance(curve.positions[b]) < 0.2 * spacing;
         std::vector<Point<2>>     face;
         std::vector<unsigned int> face_corners; // in face
+        // Where the legs start along the path, and its length.
+        std::vector<double> start(1, 0.);
         for (unsigned int leg = 0; leg + 1 < path.size(); ++leg)
+          start.push_back(start.back() + path[leg].distance(path[leg + 1]));
+        const auto along = [&](const double s) {
+          const unsigned int leg = std::min<unsigned int>(
+            std::upper_bound(start.begin(), start.end(), s) - start.begin() - 1,
+            path.size() - 2);
+          const double length = start[leg + 1] - start[leg];
+          return length > 0 ? path[leg] + ((s - start[leg]) / length) *
+                                            (path[leg + 1] - path[leg]) :
+                              path[leg];
+        };
+        // The stretches between corners: the legs, or the whole path.
+        std::vector<unsigned int> corner_points;
+        for (unsigned int i = 0; i < path.size(); ++i)
+          if (!smooth_edge || i == 0 || i + 1 == path.size())
+            corner_points.push_back(i);
+        for (unsigned int c = 0; c + 1 < corner_points.size(); ++c)
           {
-            if (leg > 0 || !first_is_a)
+            const double from = start[corner_points[c]],
+                         to   = start[corner_points[c + 1]];
+            if (c > 0 || !first_is_a)
               {
                 face_corners.push_back(face.size());
-                face.push_back(path[leg]);
+                face.push_back(path[corner_points[c]]);
               }
-            const unsigned int pieces =
-              std::max(1u,
-                       static_cast<unsigned int>(std::round(
-                         path[leg].distance(path[leg + 1]) / spacing)));
+            const unsigned int pieces = std::max(
+              1u, static_cast<unsigned int>(std::round((to - from) / spacing)));
             for (unsigned int i = 1; i < pieces; ++i)
-              face.push_back(path[leg] + (double(i) / pieces) *
-                                           (path[leg + 1] - path[leg]));
+              face.push_back(along(from + (to - from) * i / pieces));
           }
         if (!last_is_b)
           {

@@ -82,6 +82,14 @@ namespace bsmpm
           "round the body region); other curves and the probe must stay "
           "more than a cell away from the polygon.");
         prm.declare_entry(
+          "Excavation edge",
+          "straight",
+          Patterns::Selection("straight|B-spline"),
+          "How the points of Excavation bound the region: straight, a "
+          "polygon with them as its corners; B-spline, the closed cubic "
+          "B-spline through them (a round pit or a tunnel's outline), "
+          "whose arc becomes the cut's face without corners.");
+        prm.declare_entry(
           "Construction",
           "",
           Patterns::Anything(),
@@ -137,6 +145,7 @@ namespace bsmpm
         stage.detect_collapse     = prm.get("Detect collapse");
         stage.excavation          = ParameterTools::parse_points(
           prm.get("Excavation"), "Stages/" + stage_section(k) + "/Excavation");
+        stage.excavation_spline = prm.get("Excavation edge") == "B-spline";
         for (const std::string &name :
              Utilities::split_string_list(prm.get("Construction")))
           if (!name.empty())

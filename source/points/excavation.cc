@@ -1,9 +1,12 @@
+#include <bsmpm/geometry/b_spline_curve.h>
 #include <bsmpm/geometry/body_region.h>
 #include <bsmpm/points/excavation.h>
 #include <bsmpm/points/material_points.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace bsmpm
@@ -16,8 +19,8 @@ namespace bsmpm
                      const std::string           &where)
   {
     AssertThrow(polygon.size() >= 3,
-                ExcMessage(where + ": an excavation is a polygon of at "
-                                   "least 3 vertices 'x0, y0; x1, y1; ...'."));
+                ExcMessage(where + ": an excavation is a region of at "
+                                   "least 3 points 'x0, y0; x1, y1; ...'."));
     // Within a cell of the polygon: inside it, or nearer than h to an edge.
     const double h        = grid.min_cell_size();
     const auto   distance = [&](const Point<2> &x) {
@@ -48,6 +51,45 @@ namespace bsmpm
     forces.clear();
     return points.remove_points(
       [&](const Point<2> &x) { return polygon_contains(polygon, x); });
+  }
+
+
+
+  std::vector<Point<2>>
+  Excavation::region_outline(const std::vector<Point<2>> &points,
+                             const bool                   spline,
+                             const double                 spacing,
+                             const std::string           &where)
+  {
+    AssertThrow(points.size() >= 3,
+                ExcMessage(where + ": an excavation is a region of at "
+                                   "least 3 points 'x0, y0; x1, y1; ...'."));
+    if (!spline)
+      return points;
+    std::unique_ptr<BSplineCurve> curve;
+    try
+      {
+        curve = std::make_unique<BSplineCurve>(points, true);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream message;
+        e.print_info(message);
+        AssertThrow(false, ExcMessage(where + ": " + message.str()));
+      }
+    std::vector<Point<2>> outline;
+    for (unsigned int k = 0; k < curve->n_segments(); ++k)
+      {
+        const auto         range = curve->segment_parameters(k);
+        const unsigned int n     = std::max(
+          4u,
+          static_cast<unsigned int>(std::ceil(
+            points[k].distance(points[(k + 1) % points.size()]) / spacing)));
+        for (unsigned int i = 0; i < n; ++i)
+          outline.push_back(
+            curve->value(range[0] + (range[1] - range[0]) * i / n));
+      }
+    return outline;
   }
 
 

@@ -217,7 +217,8 @@ namespace bsmpm
      * of points inside it gives way to the region's edge from where the
      * spline leaves it to where it enters it again, through the body:
      * free, with points about as far apart as the curve's, its corners
-     * and the crossings as corners, each point with the state and total
+     * (not with @p smooth_edge, a sampled B-spline) and the crossings as
+     * corners of the spline, each point with the state and total
      * displacement of the material within a cell of it. Conditions keep
      * their stretch outside the region. Refuses (naming @p where) a region
      * that holds no point of a closed curve but reaches into the body (a
@@ -228,6 +229,7 @@ namespace bsmpm
      */
     bool
     excavate(const std::vector<Point<2>> &polygon,
+             const bool                   smooth_edge,
              MaterialPoints              &points,
              const BackgroundGrid        &grid,
              const std::string           &where);

@@ -54,6 +54,9 @@ namespace bsmpm
       /** The polygon whose material the stage removes (Excavation); empty
        * for none. */
       std::vector<Point<2>> excavation;
+      /** Whether the excavated region is bounded by the closed B-spline
+       * through the points of #excavation, not the polygon. */
+      bool excavation_spline = false;
       /** The names of the bodies that the stage builds (Bodies). */
       std::vector<std::string> construction;
     };

@@ -57,6 +57,16 @@ namespace bsmpm
            const std::vector<Point<2>> &kept_points,
            const std::string           &where);
 
+    /** The region of @p points (Stages/Stage k/Excavation) as a polygon:
+     * the points themselves, or with @p spline the closed cubic B-spline
+     * through them, sampled at most @p spacing apart (the message of bad
+     * input names @p where). */
+    static std::vector<Point<2>>
+    region_outline(const std::vector<Point<2>> &points,
+                   const bool                   spline,
+                   const double                 spacing,
+                   const std::string           &where);
+
     /** Keeps the forces to release: minus @p out_of_balance, the rest's
      * out-of-balance force after the removal. */
     void

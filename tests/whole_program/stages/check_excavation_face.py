@@ -14,12 +14,16 @@ constrained modulus) and carries -rho g (H' - y).
 4. Resumed from a checkpoint written after an excavation changed the
    curve (finite strain, a second excavation after it), the run ends where
    the run left alone ends, to the last digit.
-5. Refused, naming the parameter: a region inside the body (a cavity), a
+5. A round pit (Excavation edge = B-spline through 12 points on a circle
+   of radius 0.4 m centred on the column's top): the area removed is the
+   half disc's within 3e-3 at h = 0.125 and 1e-3 at h = 0.0625.
+6. Refused, naming the parameter: a region inside the body (a cavity), a
    region through the column's middle (it would cross the curve twice),
    and a region that takes a stretch of a curve with a condition that
    would then hold on the face.
 """
 import argparse
+import math
 import os
 import pathlib
 import sys
@@ -34,7 +38,7 @@ parser.add_argument("--prm", required=True)
 parser.add_argument("--np", type=int, default=1)
 parser.add_argument("--heights", default="7.9,6.7,6.5,6.33,3.3")
 parser.add_argument("--finite-tolerance", type=float, default=0.01)
-parser.add_argument("--parts", default="1,2,3,4,5")
+parser.add_argument("--parts", default="1,2,3,4,5,6")
 args = parser.parse_args()
 parts = {int(p) for p in args.parts.split(",")}
 
@@ -105,6 +109,18 @@ if 4 in parts:
         if not same:
             problems.append("resumed after an excavation: a different end")
 if 5 in parts:
+    circle = "; ".join(f"{0.5 + 0.4 * math.cos(math.pi * i / 6):.12g}, "
+                       f"{H + 0.4 * math.sin(math.pi * i / 6):.12g}"
+                       for i in range(12))
+    for h, tolerance in ((0.125, 3e-3), (0.0625, 1e-3)):
+        summary = run(args.bsmpm, args.prm, args.np, [
+            f"Background grid/Cell size={h}",
+            f"Stages/Stage 2/Excavation={circle}",
+            "Stages/Stage 2/Excavation edge=B-spline"])
+        check(f"round pit, h = {h}: area removed",
+              1.0 * H - summary["quantities"]["body_area"],
+              math.pi * 0.4 ** 2 / 2, tolerance)
+if 6 in parts:
     refusals = [
         ("a cavity", ["Stages/Stage 2/Excavation=0.2, 3; 0.8, 3; 0.8, 4; "
                       "0.2, 4"], "a cavity"),
