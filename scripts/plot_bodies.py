@@ -2,9 +2,12 @@
 """Draws the material points of a run with several bodies from a text file
 of columns x, y, body, equivalent plastic strain, volume (one row a point;
 written from a points-NNNN.pvtu by pvpython, see doc/bodies.md): left the
-bodies, right the equivalent plastic strain.
+bodies, right the equivalent plastic strain; with CURVES.txt (columns x,
+y from a curves-NNNN.vtu, written the same way) the boundary curves over
+both.
 
-Usage: plot_bodies.py POINTS.txt PNG [TITLE [LARGEST PLASTIC STRAIN SHOWN]]
+Usage: plot_bodies.py POINTS.txt PNG [TITLE [LARGEST PLASTIC STRAIN SHOWN
+                                              [CURVES.txt]]]
 """
 import sys
 
@@ -28,6 +31,10 @@ shown = axes[1].scatter(x, y, c=np.minimum(plastic, cap), s=2,
                         cmap="viridis")
 axes[1].set_title(f"equivalent plastic strain (to {cap:g})")
 figure.colorbar(shown, ax=axes[1], shrink=0.8)
+if len(sys.argv) > 5:
+    curve = np.loadtxt(sys.argv[5])
+    for ax in axes:
+        ax.plot(curve[:, 0], curve[:, 1], ".", color="black", ms=0.8)
 if len(sys.argv) > 3:
     figure.suptitle(sys.argv[3])
 figure.tight_layout()
