@@ -134,6 +134,16 @@ def run(bsmpm, prm, np=1, settings=(), directory=None, *, arguments=(),
     return summary
 
 
+def check_relative(problems, what, value, expected, tolerance):
+    """Prints @p value against @p expected with its relative error, and
+    appends @p what to the list @p problems if that exceeds @p tolerance."""
+    error = abs(value - expected) / abs(expected)
+    print(f"{what}: {value:.10e} (exact {expected:.10e}, relative error "
+          f"{error:.2e}, tolerance {tolerance:g})")
+    if not error <= tolerance:
+        problems.append(what)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--mpirun-flags", action="store_true",

@@ -30,7 +30,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2]))
-from bsmpm_run import run  # noqa: E402  (tests/bsmpm_run.py)
+from bsmpm_run import check_relative, run  # noqa: E402  (tests/bsmpm_run.py)
 
 parser = argparse.ArgumentParser(description=__doc__)
 parser.add_argument("--bsmpm", required=True)
@@ -53,11 +53,7 @@ def region(top):
 
 
 def check(what, value, expected, tolerance):
-    error = abs(value - expected) / abs(expected)
-    print(f"{what}: {value:.10e} (exact {expected:.10e}, relative error "
-          f"{error:.2e}, tolerance {tolerance:.0e})")
-    if not error <= tolerance:
-        problems.append(what)
+    check_relative(problems, what, value, expected, tolerance)
 
 
 def column(top, settings=(), tolerance=1e-10, label="small strain"):
