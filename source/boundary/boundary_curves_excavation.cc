@@ -293,7 +293,24 @@ namespace bsmpm
 
         // The material's state along the face: that of the points within a
         // cell of it; its total displacement, that of the material there.
-        const auto means = points.mean_properties_near(face, h);
+        auto means = points.mean_properties_near(face, h);
+        // Where the face runs along a stretch the points have left (one
+        // point per cell, a corner that bulged), the material two cells
+        // away.
+        std::vector<Point<2>>     far;
+        std::vector<unsigned int> far_index;
+        for (unsigned int i = 0; i < face.size(); ++i)
+          if (means[i].empty())
+            {
+              far.push_back(face[i]);
+              far_index.push_back(i);
+            }
+        if (!far.empty())
+          {
+            const auto far_means = points.mean_properties_near(far, 2 * h);
+            for (unsigned int j = 0; j < far.size(); ++j)
+              means[far_index[j]] = far_means[j];
+          }
         std::vector<std::vector<double>> properties;
         std::vector<Point<2>>            initial_positions;
         using P = MaterialPoints::Property;
@@ -303,7 +320,7 @@ namespace bsmpm
             at << "(" << face[i] << ")";
             AssertThrow(!means[i].empty(),
                         ExcMessage(where +
-                                   ": no material lies within a cell "
+                                   ": no material lies within two cells "
                                    "of the excavation's face at " +
                                    at.str() + " (" + name + ")."));
             std::vector<double> props = means[i];
