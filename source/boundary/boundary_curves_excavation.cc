@@ -90,6 +90,122 @@ namespace bsmpm
       path.push_back(y);
       return path;
     }
+
+    /** Twice the signed area of the closed chain @p p: positive where it
+     * runs counter-clockwise (round a body), negative clockwise (round a
+     * hole of it). */
+    double
+    signed_area(const std::vector<Point<2>> &p)
+    {
+      double area = 0;
+      for (unsigned int i = 0; i < p.size(); ++i)
+        {
+          const Point<2> &a = p[i], &b = p[(i + 1) % p.size()];
+          area += a[0] * b[1] - b[0] * a[1];
+        }
+      return area;
+    }
+
+    /**
+     * Points along @p path about @p spacing apart, its vertices among them
+     * and marked in @p corners; with @p smooth (a sampled B-spline) evenly
+     * along its whole length, its ends the only corners. Without its first
+     * point if @p skip_first, without its last if @p skip_last.
+     */
+    void
+    sample_path(const std::vector<Point<2>> &path,
+                const bool                   smooth,
+                const double                 spacing,
+                const bool                   skip_first,
+                const bool                   skip_last,
+                std::vector<Point<2>>       &samples,
+                std::vector<unsigned int>   &corners)
+    {
+      // Where the legs start along the path.
+      std::vector<double> start(1, 0.);
+      for (unsigned int leg = 0; leg + 1 < path.size(); ++leg)
+        start.push_back(start.back() + path[leg].distance(path[leg + 1]));
+      const auto along = [&](const double s) {
+        const unsigned int leg = std::min<unsigned int>(
+          std::upper_bound(start.begin(), start.end(), s) - start.begin() - 1,
+          path.size() - 2);
+        const double length = start[leg + 1] - start[leg];
+        return length > 0 ? path[leg] + ((s - start[leg]) / length) *
+                                          (path[leg + 1] - path[leg]) :
+                            path[leg];
+      };
+      // The stretches between corners: the legs, or the whole path.
+      std::vector<unsigned int> ends;
+      for (unsigned int i = 0; i < path.size(); ++i)
+        if (!smooth || i == 0 || i + 1 == path.size())
+          ends.push_back(i);
+      for (unsigned int c = 0; c + 1 < ends.size(); ++c)
+        {
+          const double from = start[ends[c]], to = start[ends[c + 1]];
+          if (c > 0 || !skip_first)
+            {
+              corners.push_back(samples.size());
+              samples.push_back(path[ends[c]]);
+            }
+          const unsigned int pieces = std::max(
+            1u, static_cast<unsigned int>(std::round((to - from) / spacing)));
+          for (unsigned int i = 1; i < pieces; ++i)
+            samples.push_back(along(from + (to - from) * i / pieces));
+        }
+      if (!skip_last)
+        {
+          corners.push_back(samples.size());
+          samples.push_back(path.back());
+        }
+    }
+
+    /** The state of the material at the points @p face of a new face
+     * (MaterialPoints' properties: the mean of the points within a cell,
+     * or two), their starting places into @p initial_positions. */
+    std::vector<std::vector<double>>
+    face_states(const std::vector<Point<2>> &face,
+                const MaterialPoints        &points,
+                const double                 h,
+                const std::string           &where,
+                std::vector<Point<2>>       &initial_positions)
+    {
+      auto means = points.mean_properties_near(face, h);
+      // Where the face runs along a stretch the points have left (one point
+      // per cell, a corner that bulged), the material two cells away.
+      std::vector<Point<2>>     far;
+      std::vector<unsigned int> far_index;
+      for (unsigned int i = 0; i < face.size(); ++i)
+        if (means[i].empty())
+          {
+            far.push_back(face[i]);
+            far_index.push_back(i);
+          }
+      if (!far.empty())
+        {
+          const auto far_means = points.mean_properties_near(far, 2 * h);
+          for (unsigned int j = 0; j < far.size(); ++j)
+            means[far_index[j]] = far_means[j];
+        }
+      using P = MaterialPoints::Property;
+      initial_positions.clear();
+      for (unsigned int i = 0; i < face.size(); ++i)
+        {
+          std::ostringstream at;
+          at << "(" << face[i] << ")";
+          AssertThrow(!means[i].empty(),
+                      ExcMessage(where +
+                                 ": no material lies within two cells "
+                                 "of the excavation's face at " +
+                                 at.str() + "."));
+          std::vector<double> &props = means[i];
+          const Point<2>       X(face[i][0] - props[P::displacement],
+                           face[i][1] - props[P::displacement + 1]);
+          props[P::initial_position]     = X[0];
+          props[P::initial_position + 1] = X[1];
+          initial_positions.push_back(X);
+        }
+      return means;
+    }
   } // namespace
 
 
@@ -144,6 +260,15 @@ namespace bsmpm
     bool changed = false;
     n_inserted.resize(curves.size(), 0);
     n_removed.resize(curves.size(), 0);
+    // A region wholly in the body and away from its curves (a cavity, a
+    // tunnel) becomes a closed curve of its own, round the hole; so does a
+    // region that holds a whole hole's curve (the hole widened all round),
+    // in that curve's place.
+    bool         cavity          = false;
+    bool         in_a_hole       = false;
+    double       cavity_spacing  = h;
+    unsigned int widened         = numbers::invalid_unsigned_int;
+    double       widened_spacing = h;
     for (unsigned int c = 0; c < curves.size(); ++c)
       {
         if (!follows_excavation(c))
@@ -160,23 +285,51 @@ namespace bsmpm
                       ExcMessage(where + ": the excavated region " + why +
                                  " (" + name + ")."));
         };
+        // A curve round a hole runs clockwise, the body outside it.
+        const bool hole      = signed_area(curve.positions) < 0;
+        double     perimeter = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          perimeter +=
+            curve.positions[k].distance(curve.positions[(k + 1) % n]);
+        const double spacing = std::min(perimeter / n, h);
         if (n_in == 0)
           {
-            // A region that reaches into the body between two points of
-            // the curve, or lies wholly inside it (a cavity), would leave a
-            // face that is no curve.
+            // The region's corners: in the body beyond the band round the
+            // curve, or near the curve. All in the body: a cavity; none in
+            // the body nor near: the region lies beyond the curve (in the
+            // hole it bounds, or outside the body). Otherwise the region
+            // reaches into the body between two points of the curve.
+            unsigned int n_body = 0, n_near = 0;
             for (const Point<2> &v : polygon)
-              if (polygon_contains(curve.positions, v) &&
-                  distance_to_edges(curve.positions, v) > tolerance)
-                refuse("has a corner inside the body but holds no point of "
-                       "the curve round it: a cavity, or a notch narrower "
-                       "than the curve's points are apart, cannot be "
-                       "excavated; let the region take in a stretch of the "
-                       "body's boundary");
+              if (distance_to_edges(curve.positions, v) <= band)
+                ++n_near;
+              else if (polygon_contains(curve.positions, v) != hole)
+                ++n_body;
+            if (n_body == polygon.size())
+              {
+                if (!hole)
+                  {
+                    cavity         = true;
+                    cavity_spacing = spacing;
+                  }
+              }
+            else if (n_body == 0 && n_near == 0)
+              in_a_hole = in_a_hole || hole;
+            else
+              refuse("reaches into the body between two points of the "
+                     "curve round it, a notch narrower than the curve's "
+                     "points are apart; let it take in a stretch of the "
+                     "body's boundary");
             continue;
           }
         if (n_in == n)
-          refuse("holds the whole curve round the body");
+          {
+            if (!hole)
+              refuse("holds the whole curve round the body");
+            widened         = c;
+            widened_spacing = spacing;
+            continue;
+          }
         // The stretch of the chain inside the region: r0 .. r1 (cyclic),
         // between the points a and b outside it.
         unsigned int r0 = 0;
@@ -219,7 +372,7 @@ namespace bsmpm
               const Point<2> middle = path[i] + 0.5 * (path[i + 1] - path[i]);
               if (distance_to_edges(curve.positions, middle) <= band)
                 continue;
-              if (!polygon_contains(curve.positions, middle))
+              if (polygon_contains(curve.positions, middle) == hole)
                 return false;
               some_inside = true;
             }
@@ -240,52 +393,17 @@ namespace bsmpm
         // chain's point outside is that point. A smooth edge (a sampled
         // B-spline) has corners at its ends only, its points evenly along
         // its length.
-        double perimeter = 0;
-        for (unsigned int k = 0; k < n; ++k)
-          perimeter +=
-            curve.positions[k].distance(curve.positions[(k + 1) % n]);
-        const double spacing  = std::min(perimeter / n, h);
         const bool first_is_a = x1.distance(curve.positions[a]) < 0.2 * spacing;
         const bool last_is_b  = x2.distance(curve.positions[b]) < 0.2 * spacing;
         std::vector<Point<2>>     face;
         std::vector<unsigned int> face_corners; // in face
-        // Where the legs start along the path, and its length.
-        std::vector<double> start(1, 0.);
-        for (unsigned int leg = 0; leg + 1 < path.size(); ++leg)
-          start.push_back(start.back() + path[leg].distance(path[leg + 1]));
-        const auto along = [&](const double s) {
-          const unsigned int leg = std::min<unsigned int>(
-            std::upper_bound(start.begin(), start.end(), s) - start.begin() - 1,
-            path.size() - 2);
-          const double length = start[leg + 1] - start[leg];
-          return length > 0 ? path[leg] + ((s - start[leg]) / length) *
-                                            (path[leg + 1] - path[leg]) :
-                              path[leg];
-        };
-        // The stretches between corners: the legs, or the whole path.
-        std::vector<unsigned int> corner_points;
-        for (unsigned int i = 0; i < path.size(); ++i)
-          if (!smooth_edge || i == 0 || i + 1 == path.size())
-            corner_points.push_back(i);
-        for (unsigned int c = 0; c + 1 < corner_points.size(); ++c)
-          {
-            const double from = start[corner_points[c]],
-                         to   = start[corner_points[c + 1]];
-            if (c > 0 || !first_is_a)
-              {
-                face_corners.push_back(face.size());
-                face.push_back(path[corner_points[c]]);
-              }
-            const unsigned int pieces = std::max(
-              1u, static_cast<unsigned int>(std::round((to - from) / spacing)));
-            for (unsigned int i = 1; i < pieces; ++i)
-              face.push_back(along(from + (to - from) * i / pieces));
-          }
-        if (!last_is_b)
-          {
-            face_corners.push_back(face.size());
-            face.push_back(path.back());
-          }
+        sample_path(path,
+                    smooth_edge,
+                    spacing,
+                    first_is_a,
+                    last_is_b,
+                    face,
+                    face_corners);
         // A crossing on a face of the grid (a body held by it) may lie
         // beyond it by round-off.
         for (Point<2> &x : face)
@@ -293,44 +411,9 @@ namespace bsmpm
 
         // The material's state along the face: that of the points within a
         // cell of it; its total displacement, that of the material there.
-        auto means = points.mean_properties_near(face, h);
-        // Where the face runs along a stretch the points have left (one
-        // point per cell, a corner that bulged), the material two cells
-        // away.
-        std::vector<Point<2>>     far;
-        std::vector<unsigned int> far_index;
-        for (unsigned int i = 0; i < face.size(); ++i)
-          if (means[i].empty())
-            {
-              far.push_back(face[i]);
-              far_index.push_back(i);
-            }
-        if (!far.empty())
-          {
-            const auto far_means = points.mean_properties_near(far, 2 * h);
-            for (unsigned int j = 0; j < far.size(); ++j)
-              means[far_index[j]] = far_means[j];
-          }
-        std::vector<std::vector<double>> properties;
-        std::vector<Point<2>>            initial_positions;
-        using P = MaterialPoints::Property;
-        for (unsigned int i = 0; i < face.size(); ++i)
-          {
-            std::ostringstream at;
-            at << "(" << face[i] << ")";
-            AssertThrow(!means[i].empty(),
-                        ExcMessage(where +
-                                   ": no material lies within two cells "
-                                   "of the excavation's face at " +
-                                   at.str() + " (" + name + ")."));
-            std::vector<double> props = means[i];
-            const Point<2>      X(face[i][0] - props[P::displacement],
-                             face[i][1] - props[P::displacement + 1]);
-            props[P::initial_position]     = X[0];
-            props[P::initial_position + 1] = X[1];
-            properties.push_back(props);
-            initial_positions.push_back(X);
-          }
+        std::vector<Point<2>>                  initial_positions;
+        const std::vector<std::vector<double>> properties =
+          face_states(face, points, h, where, initial_positions);
 
         // The new chain: the points outside the region in their order, the
         // face where the stretch inside was.
@@ -436,6 +519,64 @@ namespace bsmpm
                    "region");
         n_inserted[c] += face.size();
         n_removed[c] += removed_slots.size();
+        any_points_changed = true;
+        changed            = true;
+      }
+    if (widened != numbers::invalid_unsigned_int)
+      AssertThrow(!changed,
+                  ExcMessage(where + ": the excavated region holds the whole "
+                                     "curve round a hole and reaches another "
+                                     "curve too: excavate the two apart."));
+    if ((cavity && !changed && !in_a_hole) ||
+        widened != numbers::invalid_unsigned_int)
+      {
+        // The hole's curve: the region's edge, clockwise (the body on its
+        // left), free, its points about as far apart as the curves'.
+        std::vector<Point<2>> loop = polygon;
+        if (signed_area(loop) > 0)
+          std::reverse(loop.begin(), loop.end());
+        loop.push_back(loop.front());
+        std::vector<Point<2>>     face;
+        std::vector<unsigned int> corners;
+        sample_path(loop,
+                    smooth_edge,
+                    widened != numbers::invalid_unsigned_int ? widened_spacing :
+                                                               cavity_spacing,
+                    false,
+                    true,
+                    face,
+                    corners);
+        if (smooth_edge)
+          corners.clear();
+        for (Point<2> &x : face)
+          x = grid.pulled_onto(x, 0.1);
+        BoundaryCurve hole;
+        hole.closed = true;
+        hole.conditions.push_back(CurveCondition());
+        hole.corners   = corners;
+        hole.positions = face;
+        const std::vector<std::vector<double>> properties =
+          face_states(face, points, h, where, hole.initial_positions);
+        hole.tracked_slots = points.add_tracked_points(face, properties);
+        rebuild(hole);
+        if (widened != numbers::invalid_unsigned_int)
+          {
+            points.remove_tracked_points(curves[widened].tracked_slots);
+            n_removed[widened] += curves[widened].tracked_slots.size();
+            n_inserted[widened] += face.size();
+            hole.name       = curves[widened].name;
+            curves[widened] = std::move(hole);
+          }
+        else
+          {
+            hole.name = "the face of " + where;
+            curves.push_back(std::move(hole));
+            Source source;
+            source.kind = "excavation";
+            sources.push_back(source);
+            n_inserted.push_back(face.size());
+            n_removed.push_back(0);
+          }
         any_points_changed = true;
         changed            = true;
       }

@@ -173,8 +173,13 @@ namespace bsmpm
     {
       boost::archive::binary_oarchive archive(out);
       archive << n_inserted << n_removed << any_points_changed;
+      // The curves that excavations added (round holes) come after those
+      // of the parameters.
+      const unsigned int n_curves = curves.size();
+      archive << n_curves;
       for (const BoundaryCurve &curve : curves)
         {
+          archive << curve.name;
           // A condition by its parameter (CurveCondition::where), which
           // names it among those the curve was given.
           std::vector<std::string>  where;
@@ -200,8 +205,25 @@ namespace bsmpm
     std::istringstream              in(state);
     boost::archive::binary_iarchive archive(in);
     archive >> n_inserted >> n_removed >> any_points_changed;
+    unsigned int n_curves = 0;
+    archive >> n_curves;
+    AssertThrow(n_curves >= curves.size(),
+                ExcMessage("The checkpoint has fewer boundary curves than the "
+                           "parameters give."));
+    while (curves.size() < n_curves)
+      {
+        // A free closed curve round a hole that an excavation made.
+        BoundaryCurve hole;
+        hole.closed = true;
+        hole.conditions.push_back(CurveCondition());
+        curves.push_back(std::move(hole));
+        Source source;
+        source.kind = "excavation";
+        sources.push_back(source);
+      }
     for (BoundaryCurve &curve : curves)
       {
+        archive >> curve.name;
         std::vector<std::string>  where;
         std::vector<unsigned int> first, end;
         archive >> curve.tracked_slots >> curve.initial_positions >>

@@ -79,8 +79,9 @@ namespace bsmpm
           "forces they exerted on the rest are released over the stage's "
           "load steps. Empty: none. The cut's face joins a closed curve of "
           "tracking points round the body (in finite strain the one added "
-          "round the body region); other curves and the probe must stay "
-          "more than a cell away from the polygon.");
+          "round the body region), and a region inside the body (a "
+          "tunnel) gets a closed curve of its own; other curves and the "
+          "probe must stay more than a cell away from the region.");
         prm.declare_entry(
           "Excavation edge",
           "straight",

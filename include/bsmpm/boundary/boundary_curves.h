@@ -220,12 +220,15 @@ namespace bsmpm
      * (not with @p smooth_edge, a sampled B-spline) and the crossings as
      * corners of the spline, each point with the state and total
      * displacement of the material within a cell of it. Conditions keep
-     * their stretch outside the region. Refuses (naming @p where) a region
-     * that holds no point of a closed curve but reaches into the body (a
-     * cavity), that crosses a curve more than once in and out, or whose
-     * face a condition would cover. Call after the material points inside
-     * the region are removed, then update(). Returns whether a curve
-     * changed. Collective.
+     * their stretch outside the region. A curve round a hole (clockwise)
+     * follows the same way, the body outside it. A region wholly in the
+     * body and away from the curves (a cavity, a tunnel) gets a new free
+     * closed curve round the hole; one that holds a whole hole's curve
+     * replaces it. Refuses (naming @p where) a region that reaches into
+     * the body between two points of a curve, that crosses a curve more
+     * than once in and out, or whose face a condition would cover. Call
+     * after the material points inside the region are removed, then
+     * update(). Returns whether a curve changed or was added. Collective.
      */
     bool
     excavate(const std::vector<Point<2>> &polygon,
