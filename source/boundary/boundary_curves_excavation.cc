@@ -15,40 +15,7 @@ namespace bsmpm
     double
     distance_to_edges(const std::vector<Point<2>> &p, const Point<2> &x)
     {
-      double d = std::numeric_limits<double>::infinity();
-      for (unsigned int i = 0; i < p.size(); ++i)
-        {
-          const Point<2>    &a = p[i], &b = p[(i + 1) % p.size()];
-          const Tensor<1, 2> e = b - a;
-          const double       t =
-            std::clamp((x - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
-          d = std::min(d, x.distance(a + t * e));
-        }
-      return d;
-    }
-
-    /** The arc length along the boundary of polygon @p p (from vertex 0,
-     * through vertices 1, 2, ...) of the point of it nearest to @p x. */
-    double
-    arc_position(const std::vector<Point<2>> &p, const Point<2> &x)
-    {
-      double best = std::numeric_limits<double>::infinity(), position = 0;
-      double start = 0;
-      for (unsigned int i = 0; i < p.size(); ++i)
-        {
-          const Point<2>    &a = p[i], &b = p[(i + 1) % p.size()];
-          const Tensor<1, 2> e = b - a;
-          const double       t =
-            std::clamp((x - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
-          const double d = x.distance(a + t * e);
-          if (d < best)
-            {
-              best     = d;
-              position = start + t * e.norm();
-            }
-          start += e.norm();
-        }
-      return position;
+      return nearest_on_polygon(p, x).distance;
     }
 
     /** The path along the boundary of polygon @p p from @p x to @p y (both
@@ -67,7 +34,8 @@ namespace bsmpm
         vertex_position[i + 1] =
           vertex_position[i] + p[i].distance(p[(i + 1) % m]);
       const double perimeter = vertex_position[m];
-      const double sx = arc_position(p, x), sy = arc_position(p, y);
+      const double sx        = nearest_on_polygon(p, x).arc_length,
+                   sy        = nearest_on_polygon(p, y).arc_length;
       // Arc lengths from x in the direction of travel.
       const auto ahead = [&](const double s) {
         const double d = forward ? s - sx : sx - s;
@@ -236,27 +204,6 @@ namespace bsmpm
       return polygon_contains(polygon, x) ||
              distance_to_edges(polygon, x) < band;
     };
-    // The point of the region's edge nearest to @p x.
-    const auto onto_edge = [&](const Point<2> &x) {
-      Point<2> nearest = x;
-      double   d       = std::numeric_limits<double>::infinity();
-      for (unsigned int i = 0; i < polygon.size(); ++i)
-        {
-          const Point<2> &p0   = polygon[i],
-                         &p1   = polygon[(i + 1) % polygon.size()];
-          const Tensor<1, 2> e = p1 - p0;
-          const double       t =
-            std::clamp((x - p0) * e / std::max(e.norm_square(), 1e-300),
-                       0.,
-                       1.);
-          if (x.distance(p0 + t * e) < d)
-            {
-              d       = x.distance(p0 + t * e);
-              nearest = p0 + t * e;
-            }
-        }
-      return nearest;
-    };
     bool changed = false;
     n_inserted.resize(curves.size(), 0);
     n_removed.resize(curves.size(), 0);
@@ -356,7 +303,10 @@ namespace bsmpm
                                                                     range[1]) =
                 u;
             }
-          return onto_edge(curve.spline->value((range[0] + range[1]) / 2));
+          return nearest_on_polygon(polygon,
+                                    curve.spline->value((range[0] + range[1]) /
+                                                        2))
+            .point;
         };
         const Point<2> x1 = crossing(a, false);
         const Point<2> x2 = crossing((b + n - 1) % n, true);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 namespace bsmpm
@@ -367,6 +368,29 @@ namespace bsmpm
           return polygon_contains(vertices, p);
       }
     return false;
+  }
+
+
+
+  PolygonEdgePoint
+  nearest_on_polygon(const std::vector<Point<2>> &vertices, const Point<2> &p)
+  {
+    PolygonEdgePoint nearest;
+    nearest.distance = std::numeric_limits<double>::infinity();
+    double     start = 0;
+    const auto n     = vertices.size();
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Point<2>    &a = vertices[i], &b = vertices[(i + 1) % n];
+        const Tensor<1, 2> e = b - a;
+        const double       t =
+          std::clamp((p - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
+        const Point<2> q = a + t * e;
+        if (p.distance(q) < nearest.distance)
+          nearest = {q, p.distance(q), start + t * e.norm()};
+        start += e.norm();
+      }
+    return nearest;
   }
 
 

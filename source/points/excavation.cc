@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -22,22 +21,10 @@ namespace bsmpm
                 ExcMessage(where + ": an excavation is a region of at "
                                    "least 3 points 'x0, y0; x1, y1; ...'."));
     // Within a cell of the polygon: inside it, or nearer than h to an edge.
-    const double h        = grid.min_cell_size();
-    const auto   distance = [&](const Point<2> &x) {
-      double             d = std::numeric_limits<double>::infinity();
-      const unsigned int n = polygon.size();
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          const Point<2>    &a = polygon[i], &b = polygon[(i + 1) % n];
-          const Tensor<1, 2> e = b - a;
-          const double       f =
-            std::clamp((x - a) * e / std::max(e.norm_square(), 1e-300), 0., 1.);
-          d = std::min(d, x.distance(a + f * e));
-        }
-      return d;
-    };
+    const double h = grid.min_cell_size();
     for (const Point<2> &x : kept_points)
-      if (polygon_contains(polygon, x) || distance(x) < h)
+      if (polygon_contains(polygon, x) ||
+          nearest_on_polygon(polygon, x).distance < h)
         {
           std::ostringstream message;
           message << where << ": the excavated region reaches the "

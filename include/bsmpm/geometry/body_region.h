@@ -161,6 +161,21 @@ namespace bsmpm
    * edge counts as inside). */
   bool
   polygon_contains(const std::vector<Point<2>> &vertices, const Point<2> &p);
+
+  /** The point of the boundary of the closed polygon @p vertices nearest
+   * to a point: where it is, how far, and its arc length along the
+   * boundary from vertex 0 through vertices 1, 2, ... */
+  struct PolygonEdgePoint
+  {
+    Point<2> point;
+    double   distance   = 0;
+    double   arc_length = 0;
+  };
+
+  /** The point of the boundary of the closed polygon @p vertices nearest
+   * to @p p. */
+  PolygonEdgePoint
+  nearest_on_polygon(const std::vector<Point<2>> &vertices, const Point<2> &p);
 } // namespace bsmpm
 
 #endif

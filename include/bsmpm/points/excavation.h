@@ -72,13 +72,6 @@ namespace bsmpm
     void
     release(const TrilinosWrappers::MPI::Vector &out_of_balance);
 
-    /** Whether a removal left forces to release. */
-    bool
-    releases() const
-    {
-      return forces.size() > 0;
-    }
-
     /** Adds @p factor times the released forces to @p rhs (compressed),
      * but for the rows that @p constraints constrain (among them the DoFs
      * of no cell with material). */
